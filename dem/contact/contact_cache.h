@@ -1,0 +1,43 @@
+// Tangential-spring history per contact, keyed by the stable ids of the two bodies (lower id first).
+// No fixed slots per body: any number of contacts per floe. Entries of pairs that stopped touching are dropped
+// at the end of the step in which they were not refreshed.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace polyfloe::contact {
+
+struct PairKey {
+  std::uint64_t lo = 0, hi = 0;
+  bool operator==(const PairKey&) const = default;
+};
+PairKey make_key(std::uint64_t a, std::uint64_t b);
+
+struct PairKeyHash {
+  std::size_t operator()(const PairKey& k) const noexcept {
+    std::uint64_t h = k.lo * 0x9E3779B97F4A7C15ull ^ (k.hi + 0x632BE59BD9B4E019ull + (k.lo << 6) + (k.lo >> 2));
+    h ^= h >> 31;
+    return static_cast<std::size_t>(h * 0xBF58476D1CE4E5B9ull);
+  }
+};
+
+class ContactCache {
+ public:
+  // Spring value stored for this pair by the previous step, or 0 for a new contact.
+  double previous(const PairKey& k) const;
+  // Record this step's value; the pair survives into the next step.
+  void store(const PairKey& k, double spring);
+  // Called once per step after all stores: this step's entries become the previous ones.
+  void end_step();
+  std::size_t size() const { return prev_.size(); }
+  // Entries in a deterministic order (for checkpoints and tests).
+  std::vector<std::pair<PairKey, double>> entries() const;
+  void restore(const std::vector<std::pair<PairKey, double>>& entries);
+
+ private:
+  std::unordered_map<PairKey, double, PairKeyHash> prev_, cur_;
+};
+
+}  // namespace polyfloe::contact

@@ -1,0 +1,120 @@
+#include "contact/contact_law.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace polyfloe::contact {
+
+double effective_modulus(double youngs_modulus, double poisson_ratio) {
+  return youngs_modulus / (2.0 * (1.0 - poisson_ratio * poisson_ratio));
+}
+
+double effective_radius(double r1, double r2) {
+  if (std::isinf(r1)) return r2;
+  if (std::isinf(r2)) return r1;
+  return r1 * r2 / (r1 + r2);
+}
+
+double effective_mass(double m1, double m2) { return effective_radius(m1, m2); }
+
+namespace {
+
+double damping_exponent(DampingModel model) { return model == DampingModel::paper ? 0.5 : 0.25; }
+
+// Right-hand side of the nondimensional impact X'' = -(X^1.5 + zeta X^p X').
+struct Impact {
+  double zeta, p;
+  double force(double x, double v) const {
+    if (x <= 0.0) return 0.0;
+    return x * std::sqrt(x) + zeta * std::pow(x, p) * v;
+  }
+};
+
+}  // namespace
+
+double restitution_from_damping(double zeta, DampingModel model) {
+  if (zeta <= 0.0) return 1.0;
+  const Impact f{zeta, damping_exponent(model)};
+  // RK4 in nondimensional time; an undamped impact lasts 3.218 units.
+  const double h = 2.0e-4;
+  double x = 0.0, v = 1.0;
+  for (int it = 0; it < 1000000; ++it) {
+    const double k1x = v, k1v = -f.force(x, v);
+    const double k2x = v + 0.5 * h * k1v, k2v = -f.force(x + 0.5 * h * k1x, v + 0.5 * h * k1v);
+    const double k3x = v + 0.5 * h * k2v, k3v = -f.force(x + 0.5 * h * k2x, v + 0.5 * h * k2v);
+    const double k4x = v + h * k3v, k4v = -f.force(x + h * k3x, v + h * k3v);
+    const double xn = x + h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
+    const double vn = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+    // The contact ends when the (non-negative) force reaches zero on the way out, or the overlap closes.
+    if (vn < 0.0) {
+      const double fo = f.force(x, v), fn = f.force(xn, vn);
+      if (fn <= 0.0 || xn <= 0.0) {
+        const double t = (fo > 0.0 && fn < 0.0) ? fo / (fo - fn) : 1.0;
+        return -(v + t * (vn - v));
+      }
+    }
+    x = xn;
+    v = vn;
+  }
+  return 0.0;
+}
+
+double damping_from_restitution(double e, DampingModel model) {
+  if (!(e > 0.0 && e <= 1.0)) throw std::invalid_argument("restitution must be in (0, 1], got " + std::to_string(e));
+  if (e >= 1.0) return 0.0;
+  double lo = 0.0, hi = 1.0;
+  while (restitution_from_damping(hi, model) > e) hi *= 2.0;
+  for (int it = 0; it < 60 && hi - lo > 1e-12 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (restitution_from_damping(mid, model) > e ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double hertz_contact_duration(double k_n, double m_star, double speed) {
+  return 3.2181 * std::pow(m_star / k_n, 0.4) * std::pow(speed, -0.2);
+}
+
+ContactLaw::ContactLaw(const ContactLawSettings& s) : s_(s) {
+  e_star_ = contact::effective_modulus(s.youngs_modulus, s.poisson_ratio);
+  zeta_ = damping_from_restitution(s.restitution, s.damping);
+}
+
+PairCoefficients ContactLaw::coefficients(double r_a, double r_b, double m_a, double m_b) const {
+  PairCoefficients c;
+  const double r = effective_radius(r_a, r_b);
+  const double m = effective_mass(m_a, m_b);
+  c.k_n = 4.0 / 3.0 * e_star_ * std::sqrt(r);
+  c.k_s = c.k_n / (2.0 + 2.0 * s_.poisson_ratio);
+  c.mu = s_.friction;
+  if (s_.damping == DampingModel::speed_independent) {
+    c.damping = zeta_ * std::sqrt(m * c.k_n);
+  } else {
+    // gamma = C v^(1/5) / (k^(3/5) m^(2/5)) is the nondimensional damping of the d^(1/2) form.
+    c.damping = zeta_ * std::pow(c.k_n, 0.6) * std::pow(m, 0.4) * std::pow(s_.reference_speed, -0.2);
+  }
+  return c;
+}
+
+ContactForce ContactLaw::evaluate(const PairCoefficients& c, double depth, double depth_rate, double slip_velocity,
+                                  double spring, double dt) const {
+  ContactForce f;
+  const double sqrt_d = std::sqrt(depth);
+  const double damp_factor = s_.damping == DampingModel::paper ? sqrt_d : std::sqrt(sqrt_d);
+  f.normal = std::max(0.0, c.k_n * depth * sqrt_d + c.damping * damp_factor * depth_rate);
+  const double k_t = c.k_s * sqrt_d;  // k_s |d|^(kappa - 1)
+  double s = spring + slip_velocity * dt;
+  const double limit = c.mu * f.normal;
+  double ft = -k_t * s;
+  if (std::abs(ft) > limit) {
+    f.sliding = true;
+    ft = std::copysign(limit, ft);
+    s = k_t > 0.0 ? -ft / k_t : 0.0;
+  }
+  f.tangential = ft;
+  f.spring = s;
+  return f;
+}
+
+}  // namespace polyfloe::contact

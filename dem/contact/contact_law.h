@@ -1,0 +1,79 @@
+// Contact law between two prisms (paper Eq. 4-5), in the plane.
+//
+// Normal:     F_n = max(0, k_n d^1.5 + c d^p d_dot),  k_n = 4/3 E* sqrt(R*)
+//             p = 1/4 (speed-independent restitution, default) or p = 1/2 (paper Eq. 4 as printed)
+// Tangential: F_s = -min(k_s d^0.5 |s|, mu F_n) sign(s),  k_s = k_n / (2 + 2 nu)
+//             s: the tangential spring (history), integrated from the tangential relative velocity.
+// See docs/model.md for how the damping coefficient c is mapped from a target restitution e.
+#pragma once
+
+#include <limits>
+
+namespace polyfloe::contact {
+
+enum class DampingModel {
+  speed_independent,  // c d^(1/4) d_dot, c = zeta(e) sqrt(m* k_n): restitution e at every impact speed
+  paper,              // c d^(1/2) d_dot (Eq. 4), c mapped so that e holds at the reference speed
+};
+
+struct ContactLawSettings {
+  double youngs_modulus = 1.0e9;  // E [Pa]
+  double poisson_ratio = 0.3;     // nu [-]
+  double restitution = 0.5;       // target coefficient of restitution e [-], 0 < e <= 1
+  double friction = 0.3;          // Coulomb coefficient mu [-]
+  DampingModel damping = DampingModel::speed_independent;
+  double reference_speed = 1.0;   // impact speed at which the paper damping model hits e exactly [m/s]
+};
+
+inline constexpr double kInfinite = std::numeric_limits<double>::infinity();
+
+// Equivalent elastic modulus for two bodies of the same material: E / (2 (1 - nu^2)) [Pa].
+double effective_modulus(double youngs_modulus, double poisson_ratio);
+// R1 R2 / (R1 + R2); an infinite radius (a flat wall or plate) gives the other radius [m].
+double effective_radius(double r1, double r2);
+// m1 m2 / (m1 + m2); an infinite mass (a fixed or kinematic body) gives the other mass [kg].
+double effective_mass(double m1, double m2);
+
+// Restitution obtained by the nondimensional damped Hertz impact X'' + zeta X^p X' + X^1.5 = 0 (X(0) = 0,
+// X'(0) = 1), contact ending when the force reaches zero; p = 1/4 or 1/2 by model.
+double restitution_from_damping(double zeta, DampingModel model);
+// Inverse of restitution_from_damping (bisection, |e error| < 1e-10).
+double damping_from_restitution(double e, DampingModel model);
+
+// Duration of an undamped Hertz impact m* x'' = -k_n x^1.5 at impact speed v:
+// t_c = 2.9432 x_max / v = 3.2181 (m* / k_n)^(2/5) v^(-1/5) [s].
+double hertz_contact_duration(double k_n, double m_star, double speed);
+
+// Coefficients for one pair, computed once per contact per step.
+struct PairCoefficients {
+  double k_n = 0.0;      // [N/m^1.5]
+  double k_s = 0.0;      // [N/m^1.5]
+  double damping = 0.0;  // c [N s/m^(1+p)]
+  double mu = 0.0;       // [-]
+};
+
+struct ContactForce {
+  double normal = 0.0;      // F_n >= 0 [N], pushes B along +n
+  double tangential = 0.0;  // F_s along the tangent t = k x n, acting on B [N]
+  double spring = 0.0;      // updated tangential spring s [m]
+  bool sliding = false;
+};
+
+class ContactLaw {
+ public:
+  explicit ContactLaw(const ContactLawSettings& s);
+  const ContactLawSettings& settings() const { return s_; }
+  double effective_modulus() const { return e_star_; }
+  PairCoefficients coefficients(double r_a, double r_b, double m_a, double m_b) const;
+  // depth d [m], depth_rate d_dot [m/s] (> 0 while approaching), tangential slip velocity of B relative to A along
+  // t [m/s], previous spring s [m], time step [s].
+  ContactForce evaluate(const PairCoefficients& c, double depth, double depth_rate, double slip_velocity,
+                        double spring, double dt) const;
+
+ private:
+  ContactLawSettings s_;
+  double e_star_ = 0.0;
+  double zeta_ = 0.0;  // nondimensional damping for the target restitution
+};
+
+}  // namespace polyfloe::contact

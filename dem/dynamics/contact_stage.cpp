@@ -1,0 +1,50 @@
+// Stage: broad phase, planar narrow phase and the contact law, accumulated into forces and torques.
+#include <chrono>
+#include <utility>
+
+#include "dynamics/world.h"
+
+namespace polyfloe::dynamics {
+
+void World::contact_forces(double dt) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  broad_.find_pairs(boxes_, is_dynamic_, pairs_);
+  const auto t1 = clock::now();
+
+  contacts_.clear();
+  for (const contact::CandidatePair& cp : pairs_) {
+    // Orient every pair by id so the stored spring has one meaning whatever the index order.
+    int a = cp.a, b = cp.b;
+    if (id_[a] > id_[b]) std::swap(a, b);
+    contact::PlanarContact g;
+    if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g)) continue;
+
+    const Vec2 t = geometry::perp_left(g.normal);
+    const Vec2 ra = g.point - pos_[a], rb = g.point - pos_[b];
+    const Vec2 va = vel_eval_[a] + omega_eval_[a] * geometry::perp_left(ra);
+    const Vec2 vb = vel_eval_[b] + omega_eval_[b] * geometry::perp_left(rb);
+    const Vec2 v_rel = vb - va;
+
+    const contact::PairKey key{id_[a], id_[b]};
+    const double m_a = is_dynamic_[a] ? mass_[a] : contact::kInfinite;
+    const double m_b = is_dynamic_[b] ? mass_[b] : contact::kInfinite;
+    const contact::PairCoefficients k = law_.coefficients(radius_[a], radius_[b], m_a, m_b);
+    const contact::ContactForce cf =
+        law_.evaluate(k, g.depth, -v_rel.dot(g.normal), v_rel.dot(t), cache_.previous(key), dt);
+    cache_.store(key, cf.spring);
+
+    const Vec2 f = cf.normal * g.normal + cf.tangential * t;  // on b
+    force_[b] += f;
+    torque_[b] += geometry::cross(rb, f);
+    force_[a] -= f;
+    torque_[a] -= geometry::cross(ra, f);
+    contacts_.push_back({a, b, g, cf.normal, cf.tangential, cf.sliding});
+  }
+  cache_.end_step();
+  const auto t2 = clock::now();
+  profile_.broad += std::chrono::duration<double>(t1 - t0).count();
+  profile_.narrow_and_law += std::chrono::duration<double>(t2 - t1).count();
+}
+
+}  // namespace polyfloe::dynamics

@@ -1,0 +1,163 @@
+#include "dynamics/world.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace polyfloe::dynamics {
+
+Vec2 ContactRecord::force_on_b() const {
+  return normal_force * geometry.normal + tangential_force * geometry::perp_left(geometry.normal);
+}
+
+World::World(const WorldSettings& settings)
+    : settings_(settings), law_(settings.contact), broad_(settings.broad_phase_cell) {}
+
+int World::add_body(const BodyDesc& d) {
+  if (!d.shape) throw std::invalid_argument("body " + std::to_string(d.id) + " has no shape");
+  if (index_.count(d.id)) throw std::invalid_argument("duplicate body id " + std::to_string(d.id));
+  if (d.shape->size() > contact::kMaxPolygonVertices)
+    throw std::invalid_argument("body " + std::to_string(d.id) + " has " + std::to_string(d.shape->size()) +
+                                " vertices; at most " + std::to_string(contact::kMaxPolygonVertices) + " are allowed");
+  if (!(d.thickness > 0.0) || !std::isfinite(d.thickness))
+    throw std::invalid_argument("body " + std::to_string(d.id) + ": thickness must be positive");
+  if (!(d.density > 0.0) || !std::isfinite(d.density))
+    throw std::invalid_argument("body " + std::to_string(d.id) + ": density must be positive");
+  const int i = static_cast<int>(id_.size());
+  const geometry::PrismMass pm = geometry::prism_mass(*d.shape, d.thickness, d.density);
+  const bool dyn = d.motion == Motion::dynamic;
+  id_.push_back(d.id);
+  index_[d.id] = i;
+  shape_.push_back(d.shape);
+  thickness_.push_back(d.thickness);
+  mass_.push_back(pm.mass);
+  inertia_.push_back(pm.inertia_z);
+  plan_area_.push_back(d.shape->area());
+  // Walls and plates are flat and immovable for the contact law: infinite radius and mass.
+  radius_.push_back(dyn ? d.shape->equivalent_radius() : contact::kInfinite);
+  motion_.push_back(d.motion);
+  is_dynamic_.push_back(dyn ? 1 : 0);
+  pos_.push_back(d.position);
+  yaw_.push_back(d.yaw);
+  vel_.push_back(d.motion == Motion::fixed ? Vec2{0.0, 0.0} : d.velocity);
+  omega_.push_back(d.motion == Motion::fixed ? 0.0 : d.angular_velocity);
+  force_.emplace_back(0.0, 0.0);
+  torque_.push_back(0.0);
+  ext_force_.push_back(d.external_force);
+  ext_torque_.push_back(d.external_torque);
+  inv_mass_.push_back(dyn ? 1.0 / pm.mass : 0.0);
+  inv_inertia_.push_back(dyn ? 1.0 / pm.inertia_z : 0.0);
+  vert_off_.push_back(vert_off_.back() + d.shape->size());
+  world_xy_.resize(static_cast<std::size_t>(vert_off_.back()));
+  boxes_.emplace_back();
+  update_shape(i);
+  forces_ready_ = false;
+  return i;
+}
+
+int World::index_of(BodyId id) const {
+  const auto it = index_.find(id);
+  return it == index_.end() ? -1 : it->second;
+}
+
+void World::set_velocity(int i, const Vec2& v, double omega) {
+  if (motion_[i] == Motion::fixed) return;
+  vel_[i] = v;
+  omega_[i] = omega;
+  forces_ready_ = false;
+}
+
+void World::set_external_load(int i, const Vec2& force, double torque) {
+  ext_force_[i] = force;
+  ext_torque_[i] = torque;
+  forces_ready_ = false;
+}
+
+void World::step(double dt) {
+  using clock = std::chrono::steady_clock;
+  if (!forces_ready_) compute_forces(0.0);
+  auto t0 = clock::now();
+  kick(0.5 * dt);
+  drift(dt);
+  auto t1 = clock::now();
+  update_shapes();
+  auto t2 = clock::now();
+  profile_.integrate += std::chrono::duration<double>(t1 - t0).count();
+  profile_.shapes += std::chrono::duration<double>(t2 - t1).count();
+  compute_forces(dt);
+  auto t3 = clock::now();
+  kick(0.5 * dt);
+  profile_.integrate += std::chrono::duration<double>(clock::now() - t3).count();
+  time_ += dt;
+  ++steps_;
+  ++profile_.steps;
+}
+
+void World::compute_forces(double dt) {
+  using clock = std::chrono::steady_clock;
+  // Velocity-dependent forces (damping, friction history, drag) see the velocity predicted at the end of the
+  // step from the half-step velocity and the last forces: second-order accurate, where the half-step velocity
+  // alone lags by dt/2 (measured: 3 % restitution error at e = 0.2 with 40 steps per contact, instead of < 0.5 %).
+  const std::size_t n = size();
+  vel_eval_.resize(n);
+  omega_eval_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    vel_eval_[i] = vel_[i] + (0.5 * dt * inv_mass_[i]) * force_[i];
+    omega_eval_[i] = omega_[i] + 0.5 * dt * inv_inertia_[i] * torque_[i];
+  }
+  for (std::size_t i = 0; i < size(); ++i) {
+    force_[i] = ext_force_[i];
+    torque_[i] = ext_torque_[i];
+  }
+  auto t0 = clock::now();
+  drift_forces();
+  auto t1 = clock::now();
+  contact_forces(dt);
+  profile_.forcing += std::chrono::duration<double>(t1 - t0).count();
+  forces_ready_ = true;
+}
+
+double World::kinetic_energy() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < size(); ++i)
+    if (is_dynamic_[i]) e += 0.5 * mass_[i] * vel_[i].squaredNorm() + 0.5 * inertia_[i] * omega_[i] * omega_[i];
+  return e;
+}
+
+Vec2 World::linear_momentum() const {
+  Vec2 p{0.0, 0.0};
+  for (std::size_t i = 0; i < size(); ++i)
+    if (is_dynamic_[i]) p += mass_[i] * vel_[i];
+  return p;
+}
+
+double World::angular_momentum() const {
+  double l = 0.0;
+  for (std::size_t i = 0; i < size(); ++i)
+    if (is_dynamic_[i]) l += mass_[i] * geometry::cross(pos_[i], vel_[i]) + inertia_[i] * omega_[i];
+  return l;
+}
+
+double World::max_speed() const {
+  double v = 0.0;
+  for (std::size_t i = 0; i < size(); ++i)
+    if (is_dynamic_[i]) v = std::max(v, vel_[i].norm());
+  return v;
+}
+
+double World::shortest_contact_duration(double speed) const {
+  double m_min = contact::kInfinite, r_min = contact::kInfinite;
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (!is_dynamic_[i]) continue;
+    m_min = std::min(m_min, mass_[i]);
+    r_min = std::min(r_min, radius_[i]);
+  }
+  if (std::isinf(m_min)) return contact::kInfinite;
+  // Two of the lightest, smallest floes meeting: m* = m/2, R* = R/2.
+  const double k_n = 4.0 / 3.0 * law_.effective_modulus() * std::sqrt(0.5 * r_min);
+  return contact::hertz_contact_duration(k_n, 0.5 * m_min, speed);
+}
+
+}  // namespace polyfloe::dynamics

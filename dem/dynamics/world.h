@@ -1,0 +1,144 @@
+// The World: every body's state as arrays, and one step of the planar (x, y, yaw) dynamics.
+//
+// Hot state is kept as structure-of-arrays, indexed 0..size()-1; cold data (shape, id, material) lives apart.
+// Indices are internal: anything that must survive (contact history, output, checkpoints) uses BodyId.
+// The World never touches files; the run driver above it does.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "contact/broad_phase.h"
+#include "contact/contact_cache.h"
+#include "contact/contact_law.h"
+#include "contact/narrow_phase_planar.h"
+#include "dynamics/body.h"
+#include "forcing/drift.h"
+
+namespace polyfloe::dynamics {
+
+struct WorldSettings {
+  contact::ContactLawSettings contact;
+  forcing::DriftSettings drift;
+  double broad_phase_cell = 0.0;  // grid cell size [m]; 0 = automatic
+};
+
+// One active contact of the last step (for output and diagnostics).
+struct ContactRecord {
+  int a = 0, b = 0;            // body indices, ordered so that id(a) < id(b); the normal points from a to b
+  contact::PlanarContact geometry;
+  double normal_force = 0.0;   // [N], on b along +normal
+  double tangential_force = 0.0;  // [N], on b along k x normal
+  bool sliding = false;
+  Vec2 force_on_b() const;     // total contact force on b [N]
+};
+
+// Wall-clock seconds spent in each stage of step(), summed over steps.
+struct StepProfile {
+  double integrate = 0.0, shapes = 0.0, broad = 0.0, narrow_and_law = 0.0, forcing = 0.0;
+  std::uint64_t steps = 0;
+};
+
+class World {
+ public:
+  explicit World(const WorldSettings& settings);
+
+  // Adds a body and returns its index. Throws std::invalid_argument on a duplicate id or bad values.
+  int add_body(const BodyDesc& desc);
+  std::size_t size() const { return id_.size(); }
+
+  // Advance by dt [s]: velocity-Verlet (kick-drift-kick), forces evaluated at the new positions with the
+  // half-step velocities.
+  void step(double dt);
+
+  double time() const { return time_; }            // [s]
+  std::uint64_t step_count() const { return steps_; }
+  void set_time(double t, std::uint64_t steps) { time_ = t; steps_ = steps; }
+
+  // --- state (indices 0..size()-1) ---
+  std::span<const Vec2> positions() const { return pos_; }          // [m]
+  std::span<const double> yaws() const { return yaw_; }             // [rad]
+  std::span<const Vec2> velocities() const { return vel_; }         // [m/s]
+  std::span<const double> angular_velocities() const { return omega_; }  // [rad/s]
+  std::span<const Vec2> forces() const { return force_; }           // total force of the last evaluation [N]
+  std::span<const double> torques() const { return torque_; }       // [N m]
+  void set_velocity(int i, const Vec2& v, double omega);
+  void set_external_load(int i, const Vec2& force, double torque);
+
+  // --- cold data ---
+  BodyId id(int i) const { return id_[i]; }
+  int index_of(BodyId id) const;  // -1 if absent
+  const geometry::ConvexPolygon& shape(int i) const { return *shape_[i]; }
+  double thickness(int i) const { return thickness_[i]; }   // [m]
+  double mass(int i) const { return mass_[i]; }             // [kg] (of the prism, also for walls)
+  double inertia(int i) const { return inertia_[i]; }       // [kg m^2]
+  Motion motion(int i) const { return motion_[i]; }
+  // World-frame vertices of body i as of the last step (counter-clockwise).
+  std::span<const Vec2> world_vertices(int i) const {
+    return {world_xy_.data() + vert_off_[i], static_cast<std::size_t>(vert_off_[i + 1] - vert_off_[i])};
+  }
+
+  // --- contacts of the last force evaluation ---
+  const std::vector<ContactRecord>& contacts() const { return contacts_; }
+  const contact::ContactCache& contact_cache() const { return cache_; }
+  contact::ContactCache& contact_cache() { return cache_; }
+
+  // --- diagnostics ---
+  double kinetic_energy() const;             // dynamic bodies, translation + rotation [J]
+  Vec2 linear_momentum() const;              // dynamic bodies [kg m/s]
+  double angular_momentum() const;           // about the origin, z [kg m^2/s]
+  double max_speed() const;                  // [m/s]
+
+  // Duration of the shortest Hertz impact between the bodies present (smallest dynamic mass and radius) at
+  // `speed` [m/s]; the time step is a fraction of it [s].
+  double shortest_contact_duration(double speed) const;
+
+  const WorldSettings& settings() const { return settings_; }
+  const contact::ContactLaw& contact_law() const { return law_; }
+  const StepProfile& profile() const { return profile_; }
+
+  // Recompute forces at the current state without moving (called once before the first step, and after a
+  // restart). step() keeps them current afterwards.
+  void compute_forces(double dt);
+
+ private:
+  void kick(double half_dt);
+  void drift(double dt);
+  void update_shapes();
+  void update_shape(int i);
+  void contact_forces(double dt);
+  void drift_forces();
+
+  WorldSettings settings_;
+  contact::ContactLaw law_;
+  contact::GridBroadPhase broad_;
+  contact::ContactCache cache_;
+  double time_ = 0.0;
+  std::uint64_t steps_ = 0;
+  bool forces_ready_ = false;
+
+  // hot state
+  std::vector<Vec2> pos_, vel_, force_, ext_force_;
+  std::vector<double> yaw_, omega_, torque_, ext_torque_, inv_mass_, inv_inertia_;
+  std::vector<Vec2> vel_eval_;       // velocity at which velocity-dependent forces are evaluated [m/s]
+  std::vector<double> omega_eval_;   // [rad/s]
+  // cold data
+  std::vector<BodyId> id_;
+  std::unordered_map<BodyId, int> index_;
+  std::vector<std::shared_ptr<const geometry::ConvexPolygon>> shape_;
+  std::vector<double> thickness_, mass_, inertia_, radius_, plan_area_;
+  std::vector<Motion> motion_;
+  std::vector<std::uint8_t> is_dynamic_;
+  // world-frame shapes, refreshed after each drift
+  std::vector<int> vert_off_{0};
+  std::vector<Vec2> world_xy_;
+  std::vector<geometry::Aabb> boxes_;
+  // scratch
+  std::vector<contact::CandidatePair> pairs_;
+  std::vector<ContactRecord> contacts_;
+  StepProfile profile_;
+};
+
+}  // namespace polyfloe::dynamics

@@ -1,0 +1,184 @@
+// The planar narrow phase against a brute-force reference: the overlap polygon by hulling all edge crossings and
+// contained vertices; the chord vector by classifying each hull edge geometrically as lying on ∂A or not and summing
+// the outward edge normals of the ∂A part. Hand cases check that this chord is minus the gradient of the overlap
+// area with respect to translating B.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "contact/narrow_phase_planar.h"
+#include "test_support.h"
+
+using namespace polyfloe;
+using contact::PlanarContact;
+using geometry::Vec2;
+using tsupport::brute_area;
+using tsupport::brute_overlap;
+
+namespace {
+
+std::vector<Vec2> shifted(const std::vector<Vec2>& v, const Vec2& d) {
+  std::vector<Vec2> o;
+  for (const Vec2& p : v) o.push_back(p + d);
+  return o;
+}
+
+struct Reference {
+  double area = 0.0;
+  Vec2 centroid{0, 0};
+  Vec2 chord{0, 0};  // -grad_t area(A ∩ (B + t))
+};
+
+Reference reference(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double scale) {
+  Reference r;
+  const auto hull = brute_overlap(a, b);
+  if (hull.size() < 3) return r;
+  const auto props = geometry::polygon_properties(hull);
+  r.area = props.area;
+  r.centroid = props.centroid;
+  // An overlap edge lies on ∂A when its midpoint is on one of A's edge segments.
+  const double tol = 1e-9 * scale;
+  for (std::size_t k = 0; k < hull.size(); ++k) {
+    const Vec2 p = hull[k], q = hull[(k + 1) % hull.size()];
+    const Vec2 mid = 0.5 * (p + q);
+    bool on_a = false;
+    for (std::size_t i = 0; i < a.size() && !on_a; ++i) {
+      const Vec2 e = a[(i + 1) % a.size()] - a[i];
+      const double t = (mid - a[i]).dot(e) / e.squaredNorm();
+      on_a = t >= 0.0 && t <= 1.0 && std::abs(geometry::cross(e, mid - a[i])) / e.norm() < tol;
+    }
+    if (on_a) r.chord += geometry::perp_right(q - p);
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST(NarrowPhase, RandomPairsAgainstBruteForce) {
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int compared = 0, contained = 0, separated = 0;
+  const int pairs = 20000;
+  for (int it = 0; it < pairs; ++it) {
+    const double sa = 5.0 + 95.0 * u(rng), sb = 5.0 + 95.0 * u(rng);
+    const int na = 3 + static_cast<int>(u(rng) * 14), nb = 3 + static_cast<int>(u(rng) * 14);
+    const auto a0 = tsupport::random_convex(rng, na, 0.5 * sa, 0.5 * sa * (0.4 + 0.6 * u(rng)));
+    const auto b0 = tsupport::random_convex(rng, nb, 0.5 * sb, 0.5 * sb * (0.4 + 0.6 * u(rng)));
+    const Vec2 far = (it % 10 == 0) ? Vec2(1.0e4, -1.0e4) : Vec2(0, 0);  // some pairs 10 km from the origin
+    const auto a = tsupport::transform(a0, 6.3 * u(rng), far);
+    // Place B at a random distance so that most pairs overlap a little and some not at all.
+    const double dist = (0.5 * (sa + sb)) * (0.3 + 0.6 * u(rng));
+    const double ang = 6.3 * u(rng);
+    const auto b = tsupport::transform(b0, 6.3 * u(rng), far + dist * Vec2(std::cos(ang), std::sin(ang)));
+
+    PlanarContact c;
+    const bool hit = contact::planar_overlap(a, b, c);
+    const double scale = std::max(sa, sb);
+    const Reference ref = reference(a, b, scale);
+    const double area_tol = 1e-9 * scale * scale;
+    if (ref.area <= area_tol) {
+      if (hit) {
+        EXPECT_LE(c.area, 10 * area_tol) << "pair " << it;
+      }
+      ++separated;
+      continue;
+    }
+    ASSERT_TRUE(hit) << "pair " << it << " missed an overlap of area " << ref.area;
+    EXPECT_NEAR(c.area, ref.area, 1e-9 * ref.area + area_tol) << "pair " << it;
+    EXPECT_NEAR((c.point - ref.centroid).norm(), 0.0, 1e-8 * scale) << "pair " << it;
+    const double chord = ref.chord.norm();
+    if (chord < 1e-6 * scale) {
+      // One polygon inside the other: no chord; the fallback must still give a unit normal and a depth.
+      ++contained;
+      EXPECT_NEAR(c.normal.norm(), 1.0, 1e-12);
+      EXPECT_GT(c.depth, 0.0);
+      continue;
+    }
+    ++compared;
+    EXPECT_NEAR(c.chord, chord, 1e-6 * chord + 1e-7 * scale) << "pair " << it;
+    EXPECT_NEAR(c.normal.dot(ref.chord / chord), 1.0, 1e-9) << "pair " << it;
+    EXPECT_NEAR(c.depth, ref.area / chord, 1e-6 * (ref.area / chord) + 1e-9 * scale) << "pair " << it;
+    // Antisymmetry: swapping A and B flips the normal and keeps everything else.
+    PlanarContact s;
+    ASSERT_TRUE(contact::planar_overlap(b, a, s));
+    EXPECT_NEAR((s.normal + c.normal).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(s.area, c.area, 1e-9 * c.area);
+  }
+  EXPECT_GE(compared, 10000);
+  EXPECT_GT(separated, 0);
+  std::printf("compared %d overlapping pairs, %d contained, %d separated\n", compared, contained, separated);
+}
+
+TEST(NarrowPhase, TouchingIsNoContact) {
+  const std::vector<Vec2> sq = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  PlanarContact c;
+  // Edge to edge, exactly touching.
+  EXPECT_FALSE(contact::planar_overlap(sq, shifted(sq, {10, 0}), c));
+  EXPECT_FALSE(contact::planar_overlap(sq, shifted(sq, {3, 10}), c));
+  // Vertex to vertex, exactly touching.
+  EXPECT_FALSE(contact::planar_overlap(sq, shifted(sq, {10, 10}), c));
+  // A vertex touching an edge.
+  const std::vector<Vec2> diamond = {{0, -5}, {5, 0}, {0, 5}, {-5, 0}};
+  EXPECT_FALSE(contact::planar_overlap(sq, shifted(diamond, {15, 5}), c));
+  // Separated by a hair.
+  EXPECT_FALSE(contact::planar_overlap(sq, shifted(sq, {10 + 1e-12, 0}), c));
+}
+
+TEST(NarrowPhase, ParallelEdges) {
+  const std::vector<Vec2> sq = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  PlanarContact c;
+  // Same heights, edges on shared lines: the overlap is a 0.1 m x 10 m strip, normal along x.
+  ASSERT_TRUE(contact::planar_overlap(sq, shifted(sq, {9.9, 0.0}), c));
+  EXPECT_NEAR(c.area, 1.0, 1e-12);
+  EXPECT_NEAR(c.depth, 0.1, 1e-12);
+  EXPECT_NEAR(c.normal.x(), 1.0, 1e-12);
+  EXPECT_NEAR(c.normal.y(), 0.0, 1e-12);
+  EXPECT_NEAR(c.point.x(), 9.95, 1e-12);
+  EXPECT_NEAR(c.point.y(), 5.0, 1e-12);
+  // Offset by 4 m: corner against corner. The crossings are (10, 4) and (9.9, 10), so the chord normal is
+  // (6, 0.1)/|.|: moving B up also shrinks the overlap, through A's top edge inside B.
+  ASSERT_TRUE(contact::planar_overlap(sq, shifted(sq, {9.9, 4.0}), c));
+  const Vec2 n = Vec2(6.0, 0.1).normalized();
+  EXPECT_NEAR(c.area, 0.6, 1e-12);
+  EXPECT_NEAR(c.normal.x(), n.x(), 1e-12);
+  EXPECT_NEAR(c.normal.y(), n.y(), 1e-12);
+  EXPECT_NEAR(c.depth, 0.6 / std::sqrt(36.01), 1e-12);
+  EXPECT_NEAR(c.point.x(), 9.95, 1e-12);
+  EXPECT_NEAR(c.point.y(), 7.0, 1e-12);
+  // The same from the area gradient by central differences: d|A ∩ (B + t)|/dt = -chord.
+  const double h = 1e-6;
+  const auto b = shifted(sq, {9.9, 4.0});
+  const double gx = (brute_area(sq, shifted(b, {h, 0})) - brute_area(sq, shifted(b, {-h, 0}))) / (2 * h);
+  const double gy = (brute_area(sq, shifted(b, {0, h})) - brute_area(sq, shifted(b, {0, -h}))) / (2 * h);
+  EXPECT_NEAR(-gx, c.chord * c.normal.x(), 1e-6);
+  EXPECT_NEAR(-gy, c.chord * c.normal.y(), 1e-6);
+  // Flush on a shared line and overlapping: a thin overlap, normal still across it.
+  ASSERT_TRUE(contact::planar_overlap(sq, shifted(sq, Vec2(0.0, 9.999)), c));
+  EXPECT_NEAR(c.normal.y(), 1.0, 1e-12);
+  EXPECT_NEAR(c.depth, 0.001, 1e-9);
+}
+
+TEST(NarrowPhase, VertexVertex) {
+  // Two squares rotated 45 degrees meeting tip to tip with a small overlap: a square overlap of diagonal 2*pen.
+  const double h = 5.0 * std::sqrt(2.0);
+  const std::vector<Vec2> d = {{0, -h}, {h, 0}, {0, h}, {-h, 0}};
+  const double pen = 0.01;
+  PlanarContact c;
+  ASSERT_TRUE(contact::planar_overlap(d, shifted(d, {2 * h - pen, 0}), c));
+  EXPECT_NEAR(c.area, 0.5 * pen * pen, 1e-12);
+  EXPECT_NEAR(c.normal.x(), 1.0, 1e-9);
+  EXPECT_NEAR(c.chord, pen, 1e-12);
+  EXPECT_NEAR(c.depth, 0.5 * pen, 1e-12);
+}
+
+TEST(NarrowPhase, ContainmentFallsBack) {
+  const std::vector<Vec2> big = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+  const std::vector<Vec2> small = {{90, 40}, {95, 40}, {95, 45}, {90, 45}};
+  PlanarContact c;
+  ASSERT_TRUE(contact::planar_overlap(big, small, c));
+  EXPECT_NEAR(c.area, 25.0, 1e-9);
+  EXPECT_EQ(c.chord, 0.0);
+  // Least penetration: push the small square out through the right face (10 m to go).
+  EXPECT_NEAR(c.normal.x(), 1.0, 1e-12);
+  EXPECT_NEAR(c.depth, 10.0, 1e-9);
+}

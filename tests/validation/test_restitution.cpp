@@ -1,0 +1,77 @@
+// Head-on impacts of two square floes: the measured coefficient of restitution against the target, over impact
+// speeds 0.1-4 m/s, for both damping forms. Reference: the target e itself (the damping is mapped from it).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dynamics/world.h"
+#include "test_support.h"
+
+using namespace polyfloe;
+using geometry::Vec2;
+
+namespace {
+
+// Two 10 m x 10 m floes (h = 1 m) approaching at relative speed v; returns separation speed / approach speed.
+double measured_restitution(double e, double v, contact::DampingModel model, double steps_per_contact,
+                            double reference_speed = -1.0) {
+  dynamics::WorldSettings ws;
+  ws.contact.restitution = e;
+  ws.contact.friction = 0.0;
+  ws.contact.damping = model;
+  ws.contact.reference_speed = reference_speed > 0.0 ? reference_speed : v;
+  ws.drift.skin_drag = ws.drift.air_drag = false;
+  dynamics::World w(ws);
+  auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
+  dynamics::BodyDesc a{.id = 1, .shape = sq, .position = {-5.0 - 1e-3, 0.0}, .velocity = {0.5 * v, 0.0}};
+  dynamics::BodyDesc b{.id = 2, .shape = sq, .position = {5.0 + 1e-3, 0.0}, .velocity = {-0.5 * v, 0.0}};
+  w.add_body(a);
+  w.add_body(b);
+  const double dt = w.shortest_contact_duration(v) / steps_per_contact;
+  bool touched = false;
+  for (int i = 0; i < 1000000; ++i) {
+    w.step(dt);
+    if (!w.contacts().empty()) touched = true;
+    if (touched && w.contacts().empty()) break;
+  }
+  EXPECT_TRUE(touched);
+  return (w.velocities()[1].x() - w.velocities()[0].x()) / v;
+}
+
+}  // namespace
+
+TEST(Restitution, NondimensionalMappingInverts) {
+  for (auto model : {contact::DampingModel::speed_independent, contact::DampingModel::paper}) {
+    for (double e : {0.05, 0.2, 0.5, 0.9, 0.99}) {
+      const double z = contact::damping_from_restitution(e, model);
+      EXPECT_NEAR(contact::restitution_from_damping(z, model), e, 1e-8);
+    }
+  }
+  EXPECT_EQ(contact::damping_from_restitution(1.0, contact::DampingModel::paper), 0.0);
+  EXPECT_THROW(contact::damping_from_restitution(0.0, contact::DampingModel::paper), std::invalid_argument);
+  EXPECT_THROW(contact::damping_from_restitution(1.5, contact::DampingModel::paper), std::invalid_argument);
+}
+
+TEST(Restitution, SpeedIndependentModelHitsTargetAtAllSpeeds) {
+  for (double e : {0.2, 0.5, 0.9}) {
+    for (double v : {0.1, 0.3, 1.0, 2.0, 4.0}) {
+      const double got = measured_restitution(e, v, contact::DampingModel::speed_independent, 40.0);
+      EXPECT_NEAR(got, e, 0.02 * e) << "e = " << e << ", v = " << v;
+      std::printf("e %.2f v %.1f measured %.5f (%.3f %%)\n", e, v, got, 100.0 * (got - e) / e);
+    }
+  }
+}
+
+TEST(Restitution, PaperModelExactOnlyAtReferenceSpeed) {
+  // Eq. 4 as printed (damping ~ d^0.5): exact at the reference speed, and restitution falls as speed rises.
+  const double e = 0.5;
+  const double at_ref = measured_restitution(e, 1.0, contact::DampingModel::paper, 40.0);
+  EXPECT_NEAR(at_ref, e, 0.02 * e);
+  // Same coefficients (reference speed 1 m/s): slower impacts bounce more, faster ones less.
+  const double slow = measured_restitution(e, 0.1, contact::DampingModel::paper, 40.0, 1.0);
+  const double fast = measured_restitution(e, 4.0, contact::DampingModel::paper, 40.0, 1.0);
+  std::printf("paper form, e = 0.5 at 1 m/s: measured %.4f at 0.1 m/s, %.4f at 1 m/s, %.4f at 4 m/s\n", slow, at_ref,
+              fast);
+  EXPECT_GT(slow, at_ref + 0.02);
+  EXPECT_LT(fast, at_ref - 0.02);
+}
