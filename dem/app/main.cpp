@@ -1,0 +1,188 @@
+// polyfloe: the command line.
+//   polyfloe run SCENE [-o DIR] [--set key.path=value]... [--threads N] [--profile]
+//   polyfloe check SCENE [--set key.path=value]...
+//   polyfloe --help | --version
+// Exit codes: 0 done, 2 bad input, 3 the run became unstable, 1 anything else.
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "geometry/polygon.h"
+#include "run/simulation.h"
+#include "scene/scene_reader.h"
+
+#ifndef POLYFLOE_VERSION
+#define POLYFLOE_VERSION "unknown"
+#endif
+
+namespace {
+
+using namespace polyfloe;
+
+const char* kUsage = R"(PolyFloe: polyhedral discrete-element simulation of sea-ice floes in wind and currents.
+
+Usage:
+  polyfloe run SCENE [options]     run a scene, write VTK (.pvd/.vtp) and HDF5 results
+  polyfloe check SCENE [options]   validate a scene, print it resolved and the time step it would use
+  polyfloe --help                  this text
+  polyfloe --version               the code version
+
+Options:
+  -o, --output DIR        output folder (default: results/<scene name>)
+  --set KEY.PATH=VALUE    override a scene value, repeatable, e.g. --set run.duration=60
+                          --set forcing.ocean.current=[0.5,0] --set floes.0.position=[10,0]
+  --threads N             worker threads (>= 1; the step is serial in this version)
+  --profile               print where the step time went
+
+Exit codes: 0 done, 2 bad input (scene or arguments), 3 the run became unstable, 1 other failure.
+Scene keys are described in docs/scene-reference.md.
+)";
+
+struct Args {
+  std::string command;
+  std::string scene;
+  std::filesystem::path output;
+  std::vector<std::string> overrides;
+  int threads = 1;
+  bool profile = false;
+};
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  std::vector<std::string> v(argv + 1, argv + argc);
+  if (v.empty()) throw UsageError("no command given");
+  a.command = v[0];
+  if (a.command != "run" && a.command != "check") throw UsageError("unknown command '" + a.command + "'");
+  auto value = [&](std::size_t& i, const std::string& opt) -> std::string {
+    if (i + 1 >= v.size()) throw UsageError("option " + opt + " needs a value");
+    return v[++i];
+  };
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const std::string& s = v[i];
+    if (s == "-o" || s == "--output") {
+      if (a.command != "run") throw UsageError("option " + s + " applies to 'run' only");
+      a.output = value(i, s);
+    } else if (s == "--set") {
+      const std::string kv = value(i, s);
+      if (kv.find('=') == std::string::npos || kv.front() == '=')
+        throw UsageError("--set expects KEY.PATH=VALUE, got '" + kv + "'");
+      a.overrides.push_back(kv);
+    } else if (s.rfind("--set=", 0) == 0) {
+      a.overrides.push_back(s.substr(6));
+    } else if (s == "--threads") {
+      const std::string n = value(i, s);
+      char* end = nullptr;
+      const long t = std::strtol(n.c_str(), &end, 10);
+      if (end == n.c_str() || *end != '\0' || t < 1 || t > 1024)
+        throw UsageError("--threads expects an integer in [1, 1024], got '" + n + "'");
+      a.threads = static_cast<int>(t);
+    } else if (s == "--profile") {
+      a.profile = true;
+    } else if (!s.empty() && s[0] == '-') {
+      throw UsageError("unknown option '" + s + "'");
+    } else if (a.scene.empty()) {
+      a.scene = s;
+    } else {
+      throw UsageError("unexpected argument '" + s + "' (one scene file per run)");
+    }
+  }
+  if (a.scene.empty()) throw UsageError("no scene file given");
+  return a;
+}
+
+int check(const scene::Scene& sc, const dynamics::World& world) {
+  const double dt = scene::time_step(sc, world);
+  std::cout << scene::resolved_yaml(sc);
+  std::size_t dynamic = 0;
+  for (std::size_t i = 0; i < world.size(); ++i)
+    if (world.motion(static_cast<int>(i)) == dynamics::Motion::dynamic) ++dynamic;
+  const double v = scene::reference_speed(sc);
+  std::cout << "\n# resolved:\n"
+            << "#   bodies: " << world.size() << " (" << dynamic << " dynamic)\n"
+            << "#   reference impact speed: " << v << " m/s\n"
+            << "#   shortest contact duration at that speed: " << world.shortest_contact_duration(v) << " s\n"
+            << "#   time step: " << dt << " s" << (sc.time.dt ? " (fixed by the scene)" : " (automatic)") << "\n"
+            << "#   steps: " << static_cast<long long>(std::ceil(sc.time.duration / dt)) << "\n";
+  return run::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
+                    std::string(argv[1]) == "help")) {
+    std::cout << kUsage;
+    return run::kExitOk;
+  }
+  if (argc >= 2 && std::string(argv[1]) == "--version") {
+    std::cout << "polyfloe " << POLYFLOE_VERSION << "\n";
+    return run::kExitOk;
+  }
+  Args args;
+  try {
+    args = parse_args(argc, argv);
+  } catch (const UsageError& e) {
+    std::cerr << "polyfloe: " << e.what() << "\n\n" << kUsage;
+    return run::kExitBadInput;
+  }
+
+  // Bad input is found here, before any output is created.
+  scene::Scene sc;
+  std::optional<dynamics::World> world;
+  try {
+    sc = scene::read_scene(args.scene, args.overrides);
+    world.emplace(scene::build_world(sc));
+    const double dt = scene::time_step(sc, *world);
+    if (!(dt > 0.0) || !std::isfinite(dt))
+      throw scene::SceneError(args.scene + ": cannot derive a time step (no dynamic body?); set run.dt");
+  } catch (const scene::SceneError& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const geometry::GeometryError& e) {
+    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitFailure;
+  }
+
+  if (args.command == "check") return check(sc, *world);
+
+  run::RunOptions opt;
+  opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
+  opt.threads = args.threads;
+  opt.interactive = isatty(fileno(stderr)) != 0;
+  opt.profile = args.profile;
+  opt.version = POLYFLOE_VERSION;
+  try {
+    std::cerr << "polyfloe: " << sc.name << ": " << world->size() << " bodies, " << sc.time.duration
+              << " s simulated, dt = " << scene::time_step(sc, *world) << " s -> " << opt.output_dir.string() << "\n";
+    run::Simulation sim(sc, std::move(*world), opt);
+    const run::RunSummary s = sim.run();
+    std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n"
+              << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n"
+              << "  floes.pvd, contacts.pvd  (open in ParaView)\n"
+              << "  results.h5               (time series; see docs/user-guide.md)\n";
+    return run::kExitOk;
+  } catch (const run::InstabilityError& e) {
+    std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
+    return run::kExitUnstable;
+  } catch (const std::exception& e) {
+    std::cerr << "\npolyfloe: error: " << e.what() << "\n";
+    return run::kExitFailure;
+  }
+}

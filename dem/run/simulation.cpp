@@ -1,0 +1,142 @@
+#include "run/simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "io/atomic_file.h"
+#include "io/hdf5_writer.h"
+#include "io/progress.h"
+#include "io/vtk_writer.h"
+#include "scene/scene_reader.h"
+
+namespace polyfloe::run {
+
+namespace {
+
+std::string join(const std::vector<std::string>& v, const char* sep) {
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+  return out;
+}
+
+// Removes the outputs of an earlier run in the same folder (and nothing else), so no stale frame is mixed in.
+void clear_previous_outputs(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  for (const char* name : {"floes", "contacts"}) fs::remove_all(dir / name);
+  for (const char* name : {"floes.pvd", "contacts.pvd", "results.h5", "scene.resolved.yaml"}) fs::remove(dir / name);
+}
+
+}  // namespace
+
+void check_stability(const dynamics::World& w, double dt, double reference_speed) {
+  const auto pos = w.positions();
+  const auto vel = w.velocities();
+  const auto om = w.angular_velocities();
+  // Runaway: far faster than anything the forcing or the impacts can produce.
+  const double speed_limit = std::max(50.0, 20.0 * reference_speed);
+  std::ostringstream why;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const bool finite = std::isfinite(pos[i].x()) && std::isfinite(pos[i].y()) && std::isfinite(vel[i].x()) &&
+                        std::isfinite(vel[i].y()) && std::isfinite(om[i]) && std::isfinite(w.yaws()[i]);
+    const double speed = finite ? vel[i].norm() + std::abs(om[i]) * w.shape(static_cast<int>(i)).circumradius() : 0.0;
+    if (!finite) {
+      why << "body " << w.id(static_cast<int>(i)) << " has a non-finite state (NaN or Inf)";
+    } else if (speed > speed_limit) {
+      why << "body " << w.id(static_cast<int>(i)) << " moves at " << speed << " m/s (limit " << speed_limit
+          << " m/s = max(50, 20 x reference speed))";
+    } else {
+      continue;
+    }
+    why << " at t = " << w.time() << " s (step " << w.step_count() << "). The time step dt = " << dt
+        << " s is probably too large for the contact stiffness: set run.dt to " << 0.25 * dt
+        << " or raise run.steps_per_contact (e.g. x4), or lower ice.youngs_modulus.";
+    throw InstabilityError(why.str());
+  }
+  for (const dynamics::ContactRecord& c : w.contacts()) {
+    const double limit = 0.5 * std::min(w.shape(c.a).equivalent_radius(), w.shape(c.b).equivalent_radius());
+    if (c.geometry.depth > limit) {
+      why << "bodies " << w.id(c.a) << " and " << w.id(c.b) << " overlap by " << c.geometry.depth
+          << " m (more than half the smaller floe's radius, " << limit << " m) at t = " << w.time() << " s (step "
+          << w.step_count() << "). The contact is too soft or the time step too large for the impact speeds: set "
+          << "run.dt to " << 0.25 * dt << ", or raise run.reference_speed or run.steps_per_contact.";
+      throw InstabilityError(why.str());
+    }
+  }
+}
+
+Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options)
+    : scene_(scene), world_(std::move(world)), options_(options) {}
+
+RunSummary Simulation::run() {
+  namespace fs = std::filesystem;
+  using clock = std::chrono::steady_clock;
+  const auto wall0 = clock::now();
+  const double dt = scene::time_step(scene_, world_);
+  const double v_ref = scene::reference_speed(scene_);
+  const double t_end = scene_.time.duration;
+
+  fs::create_directories(options_.output_dir);
+  clear_previous_outputs(options_.output_dir);
+  io::write_file_atomic(options_.output_dir / "scene.resolved.yaml", scene::resolved_yaml(scene_));
+
+  const double rho_w = scene_.world.drift.water_density;
+  std::unique_ptr<io::VtkSeriesWriter> vtk;
+  std::unique_ptr<io::Hdf5Writer> h5;
+  if (scene_.output.vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options_.output_dir, scene_.output.contacts, rho_w);
+  if (scene_.output.hdf5) {
+    io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
+    h5 = std::make_unique<io::Hdf5Writer>(options_.output_dir / "results.h5", world_, info, rho_w);
+  }
+  int frames = 0;
+  auto write_frame = [&] {
+    if (vtk) vtk->write_frame(world_);
+    if (h5) h5->write_frame(world_);
+    ++frames;
+  };
+
+  world_.compute_forces(0.0);
+  write_frame();
+  io::Progress progress(t_end, options_.interactive);
+
+  // Steps of equal size; the last one is shortened to land on t_end. Frames at the first step at or after each
+  // multiple of the output interval.
+  const double interval = scene_.output.interval;
+  double next_frame = interval;
+  const std::uint64_t guard_every = 16;
+  while (world_.time() < t_end * (1.0 - 1e-12)) {
+    const double h = std::min(dt, t_end - world_.time());
+    world_.step(h);
+    const bool last = world_.time() >= t_end * (1.0 - 1e-12);
+    if (last || world_.step_count() % guard_every == 0) check_stability(world_, dt, v_ref);
+    if (last || world_.time() >= next_frame * (1.0 - 1e-12)) {
+      write_frame();
+      while (next_frame <= world_.time() * (1.0 + 1e-12)) next_frame += interval;
+    }
+    progress.update(world_.time(), world_.step_count());
+  }
+  progress.finish(world_.time(), world_.step_count());
+
+  RunSummary s;
+  s.steps = world_.step_count();
+  s.simulated = world_.time();
+  s.wall = std::chrono::duration<double>(clock::now() - wall0).count();
+  s.dt = dt;
+  s.frames = frames;
+  s.output_dir = options_.output_dir;
+  if (options_.profile) {
+    const dynamics::StepProfile& p = world_.profile();
+    const double total = p.integrate + p.shapes + p.broad + p.narrow_and_law + p.forcing;
+    const double per = 1e6 / (static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world_.size());
+    std::fprintf(stderr,
+                 "profile (us per body-step): integrate %.3f, shapes %.3f, broad phase %.3f, narrow phase + law %.3f, "
+                 "drift forces %.3f; total %.3f (%zu bodies, %llu steps)\n",
+                 p.integrate * per, p.shapes * per, p.broad * per, p.narrow_and_law * per, p.forcing * per,
+                 total * per, world_.size(), static_cast<unsigned long long>(p.steps));
+  }
+  return s;
+}
+
+}  // namespace polyfloe::run

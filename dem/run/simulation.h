@@ -1,0 +1,58 @@
+// The simulation driver: owns a World and steps it to the end, calling writers, the progress display and the
+// instability guard on their schedules. It is the layer that knows about files; the World never does.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "dynamics/world.h"
+#include "scene/scene.h"
+
+namespace polyfloe::run {
+
+// Process exit codes of the command line.
+enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitBadInput = 2, kExitUnstable = 3 };
+
+// The run became unstable: the message names the body, the time and what to change.
+class InstabilityError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct RunOptions {
+  std::filesystem::path output_dir;  // created if missing
+  int threads = 1;                   // worker threads requested (the step is serial in this version)
+  bool interactive = false;          // stderr is a terminal: redraw a progress line
+  bool profile = false;              // print where the time went at the end
+  std::string version;               // code version stored in the outputs
+};
+
+struct RunSummary {
+  std::uint64_t steps = 0;
+  double simulated = 0.0;   // [s]
+  double wall = 0.0;        // [s]
+  double dt = 0.0;          // [s]
+  int frames = 0;
+  std::filesystem::path output_dir;
+};
+
+// Checks the state for NaN/Inf and runaway motion; throws InstabilityError with a suggestion. `dt` is the step in
+// use, `reference_speed` the scene's impact speed [m/s].
+void check_stability(const dynamics::World& world, double dt, double reference_speed);
+
+class Simulation {
+ public:
+  Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options);
+  // Runs to scene.time.duration. Throws InstabilityError (exit 3) or std::exception (exit 1).
+  RunSummary run();
+  const dynamics::World& world() const { return world_; }
+
+ private:
+  const scene::Scene& scene_;
+  dynamics::World world_;
+  RunOptions options_;
+};
+
+}  // namespace polyfloe::run

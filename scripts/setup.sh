@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs what PolyFloe needs from Debian 12's archive. Idempotent: when everything is present it only checks
+# (well under a second). Run as root, or as a user with sudo.
+set -euo pipefail
+
+PACKAGES=(
+  g++ cmake ninja-build pkg-config git
+  libeigen3-dev libccd-dev libvtk9-dev libhdf5-dev libyaml-cpp-dev
+  libgtest-dev libbenchmark-dev
+  python3-numpy python3-h5py python3-matplotlib python3-vtk9
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"

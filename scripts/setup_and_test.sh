@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# The test job on a fresh Debian 12 machine: install dependencies, build, run every test (CTest labels unit,
+# validation, regression; the slow channel-scene test included).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+POLYFLOE_BUILD_DIR="${POLYFLOE_BUILD_DIR:-build}" bash scripts/build.sh -DPOLYFLOE_WERROR=ON
+ctest --test-dir "${POLYFLOE_BUILD_DIR:-build}" --output-on-failure -j "$(nproc)" "$@"

@@ -1,0 +1,113 @@
+// The default scene end to end: `polyfloe run dem/scenes/channel.yaml` (300 s simulated), then every frame of the
+// .pvd series is read back with VTK's XML reader (the one ParaView uses) and must hold every floe; the HDF5 file
+// must agree; and the ice must have drifted down the channel.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct PvdEntry {
+  double time;
+  std::string file;
+};
+
+std::vector<PvdEntry> read_pvd(const fs::path& pvd) {
+  std::ifstream in(pvd);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<PvdEntry> out;
+  const std::regex re(R"re(<DataSet[^>]*timestep="([^"]+)"[^>]*file="([^"]+)")re");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
+    out.push_back({std::stod((*it)[1]), (*it)[2]});
+  return out;
+}
+
+std::vector<std::uint64_t> read_u64(hid_t file, const char* name) {
+  const hid_t ds = H5Dopen2(file, name, H5P_DEFAULT);
+  EXPECT_GE(ds, 0) << name;
+  const hid_t sp = H5Dget_space(ds);
+  const auto n = H5Sget_simple_extent_npoints(sp);
+  std::vector<std::uint64_t> v(static_cast<std::size_t>(n));
+  H5Dread(ds, H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(sp);
+  H5Dclose(ds);
+  return v;
+}
+
+}  // namespace
+
+TEST(ChannelScene, RunsAndEveryFrameHoldsAllFloes) {
+  const fs::path out = fs::temp_directory_path() / "polyfloe_channel_test";
+  fs::remove_all(out);
+  const std::string cmd = std::string(POLYFLOE_BINARY) + " run " + POLYFLOE_SOURCE_DIR +
+                          "/dem/scenes/channel.yaml -o " + out.string() + " > " + (out.string() + ".log") + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << out.string() << ".log";
+
+  // Ids and motion of every body, from the HDF5 file.
+  const hid_t h5 = H5Fopen((out / "results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(h5, 0);
+  const std::vector<std::uint64_t> ids = read_u64(h5, "/floes/id");
+  const std::vector<std::uint64_t> motion = read_u64(h5, "/floes/motion");
+  std::set<std::uint64_t> floes;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (motion[i] == 0) floes.insert(ids[i]);
+  const hid_t t_ds = H5Dopen2(h5, "/time", H5P_DEFAULT);
+  const hid_t t_sp = H5Dget_space(t_ds);
+  const auto frames_h5 = H5Sget_simple_extent_npoints(t_sp);
+  H5Sclose(t_sp);
+  H5Dclose(t_ds);
+  H5Fclose(h5);
+  EXPECT_GT(floes.size(), 1000u);  // a 1 km x 1 km field at 50 %: ~1200 floes
+
+  const auto entries = read_pvd(out / "floes.pvd");
+  ASSERT_EQ(static_cast<long long>(entries.size()), static_cast<long long>(frames_h5));
+  EXPECT_EQ(entries.size(), 61u);  // t = 0, 5, ..., 300 s
+  EXPECT_NEAR(entries.back().time, 300.0, 1e-6);
+
+  double mean_x_first = 0.0, mean_x_last = 0.0;
+  for (std::size_t f = 0; f < entries.size(); ++f) {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName((out / entries[f].file).c_str());
+    reader->Update();
+    ASSERT_EQ(reader->GetErrorCode(), 0u) << entries[f].file;
+    vtkPolyData* pd = reader->GetOutput();
+    vtkDataArray* id = pd->GetCellData()->GetArray("id");
+    vtkDataArray* mo = pd->GetCellData()->GetArray("motion");
+    ASSERT_NE(id, nullptr);
+    ASSERT_NE(mo, nullptr);
+    std::set<std::uint64_t> seen;
+    for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+      if (mo->GetTuple1(c) == 0) seen.insert(static_cast<std::uint64_t>(id->GetTuple1(c)));
+    EXPECT_EQ(seen, floes) << "frame " << f << " (" << entries[f].file << ")";
+    // Mean x of the floe points (bottom and top rings).
+    double sx = 0.0;
+    vtkIdType np = 0;
+    for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c) {
+      if (mo->GetTuple1(c) != 0) continue;
+      double b[6];
+      pd->GetCellBounds(c, b);
+      sx += 0.5 * (b[0] + b[1]);
+      ++np;
+    }
+    if (f == 0) mean_x_first = sx / np;
+    if (f + 1 == entries.size()) mean_x_last = sx / np;
+  }
+  // Free drift is ~4.25 m/s; the walls and the strait hold the ice back, but it must have moved well downstream.
+  std::printf("mean floe x: %.1f m at t = 0, %.1f m at t = 300 s\n", mean_x_first, mean_x_last);
+  EXPECT_GT(mean_x_last - mean_x_first, 300.0);
+  fs::remove_all(out);
+}
