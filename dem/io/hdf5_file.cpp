@@ -1,0 +1,475 @@
+#include "io/hdf5_file.h"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <type_traits>
+
+namespace polyfloe::io::hdf5 {
+namespace fs = std::filesystem;
+
+static_assert(std::is_same_v<hid_t, std::int64_t>, "HDF5 >= 1.10 uses 64-bit identifiers");
+static_assert(sizeof(hsize_t) == sizeof(std::uint64_t));
+
+namespace {
+
+// While alive, HDF5's automatic error report goes to this object instead of stderr: the error callback walks
+// the error stack of a failing API call into `messages`, and check() turns it into an Hdf5Error naming the
+// object. The previous handler is restored on destruction, so other HDF5 users in the process are unaffected.
+class ErrorScope {
+ public:
+  explicit ErrorScope(std::string where) : where_(std::move(where)) {
+    H5Eget_auto2(H5E_DEFAULT, &old_func_, &old_data_);
+    H5Eset_auto2(H5E_DEFAULT, &ErrorScope::on_error, this);
+  }
+  ErrorScope(const ErrorScope&) = delete;
+  ErrorScope& operator=(const ErrorScope&) = delete;
+  ~ErrorScope() { H5Eset_auto2(H5E_DEFAULT, old_func_, old_data_); }
+
+  // Throws if `rc` is negative (HDF5's failure value for herr_t, hid_t, htri_t and ssize_t).
+  template <class R>
+  R check(R rc, const char* call) const {
+    if (rc < 0) fail(call);
+    return rc;
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    std::string msg = where_ + ": " + what + " failed";
+    if (!messages_.empty()) msg += " (" + messages_ + ")";
+    throw Hdf5Error(msg);
+  }
+
+ private:
+  static herr_t on_error(hid_t stack, void* client) noexcept {
+    auto* self = static_cast<ErrorScope*>(client);
+    try {
+      H5Ewalk2(stack, H5E_WALK_DOWNWARD, &ErrorScope::on_frame, &self->messages_);
+    } catch (...) {
+      // out of memory while formatting: the exception still follows, only less detailed
+    }
+    return 0;
+  }
+  static herr_t on_frame(unsigned n, const H5E_error2_t* e, void* client) {
+    auto* messages = static_cast<std::string*>(client);
+    if (n > 0) *messages += "; ";
+    *messages += e->func_name ? e->func_name : "?";
+    *messages += ": ";
+    *messages += e->desc ? e->desc : "?";
+    return 0;
+  }
+
+  std::string where_;
+  std::string messages_;
+  H5E_auto2_t old_func_ = nullptr;
+  void* old_data_ = nullptr;
+};
+
+hid_t memory_type(DType t) {
+  switch (t) {
+    case DType::f32: return H5T_NATIVE_FLOAT;
+    case DType::f64: return H5T_NATIVE_DOUBLE;
+    case DType::i8: return H5T_NATIVE_INT8;
+    case DType::u8: return H5T_NATIVE_UINT8;
+    case DType::i32: return H5T_NATIVE_INT32;
+    case DType::u32: return H5T_NATIVE_UINT32;
+    case DType::i64: return H5T_NATIVE_INT64;
+    case DType::u64: return H5T_NATIVE_UINT64;
+  }
+  return H5T_NATIVE_DOUBLE;
+}
+
+// Stored types: little-endian standard types, whatever the machine.
+hid_t file_type(DType t) {
+  switch (t) {
+    case DType::f32: return H5T_IEEE_F32LE;
+    case DType::f64: return H5T_IEEE_F64LE;
+    case DType::i8: return H5T_STD_I8LE;
+    case DType::u8: return H5T_STD_U8LE;
+    case DType::i32: return H5T_STD_I32LE;
+    case DType::u32: return H5T_STD_U32LE;
+    case DType::i64: return H5T_STD_I64LE;
+    case DType::u64: return H5T_STD_U64LE;
+  }
+  return H5T_IEEE_F64LE;
+}
+
+std::vector<hsize_t> to_hsize(const Dims& d) { return {d.begin(), d.end()}; }
+
+// A scratch identifier (dataspace, datatype, property list) closed at scope exit.
+Handle scratch(const ErrorScope& scope, hid_t id, const char* call) { return Handle(scope.check(id, call), {}); }
+
+Handle variable_string_type(const ErrorScope& scope) {
+  Handle type = scratch(scope, H5Tcopy(H5T_C_S1), "H5Tcopy");
+  scope.check(H5Tset_size(type.id(), H5T_VARIABLE), "H5Tset_size");
+  scope.check(H5Tset_cset(type.id(), H5T_CSET_UTF8), "H5Tset_cset");
+  return type;
+}
+
+// Link creation property list that creates missing intermediate groups ("a/b/c").
+Handle intermediate_groups(const ErrorScope& scope) {
+  Handle lcpl = scratch(scope, H5Pcreate(H5P_LINK_CREATE), "H5Pcreate");
+  scope.check(H5Pset_create_intermediate_group(lcpl.id(), 1), "H5Pset_create_intermediate_group");
+  return lcpl;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------- Handle
+
+Handle::Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, -1)), where_(std::move(o.where_)) {}
+
+Handle& Handle::operator=(Handle&& o) noexcept {
+  if (this != &o) {
+    reset();
+    id_ = std::exchange(o.id_, -1);
+    where_ = std::move(o.where_);
+  }
+  return *this;
+}
+
+std::int64_t Handle::release() noexcept { return std::exchange(id_, -1); }
+
+void Handle::reset() noexcept {
+  if (id_ < 0) return;
+  const hid_t id = std::exchange(id_, -1);
+  H5E_auto2_t old_func = nullptr;
+  void* old_data = nullptr;
+  H5Eget_auto2(H5E_DEFAULT, &old_func, &old_data);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  switch (H5Iget_type(id)) {
+    case H5I_FILE: H5Fclose(id); break;
+    case H5I_GROUP: H5Gclose(id); break;
+    case H5I_DATASET: H5Dclose(id); break;
+    case H5I_ATTR: H5Aclose(id); break;
+    case H5I_DATASPACE: H5Sclose(id); break;
+    case H5I_DATATYPE: H5Tclose(id); break;
+    case H5I_GENPROP_LST: H5Pclose(id); break;
+    default: H5Idec_ref(id); break;
+  }
+  H5Eset_auto2(H5E_DEFAULT, old_func, old_data);
+}
+
+// ---------------------------------------------------------------------------------------------------- Object
+
+std::string Object::child_name(std::string_view child) const {
+  if (name_ == "/") return "/" + std::string(child);
+  return name_ + "/" + std::string(child);
+}
+
+std::string Object::where_of(std::string_view child) const { return file_.string() + ":" + child_name(child); }
+
+bool Object::has_attribute(std::string_view attr) const {
+  const std::string a(attr);
+  ErrorScope scope(where());
+  return scope.check(H5Aexists(handle_.id(), a.c_str()), "H5Aexists") > 0;
+}
+
+namespace {
+
+// Removes an existing attribute and creates a scalar one of the given type.
+Handle fresh_scalar_attribute(const ErrorScope& scope, hid_t owner, const std::string& name, hid_t type) {
+  if (scope.check(H5Aexists(owner, name.c_str()), "H5Aexists") > 0) {
+    scope.check(H5Adelete(owner, name.c_str()), "H5Adelete");
+  }
+  Handle space = scratch(scope, H5Screate(H5S_SCALAR), "H5Screate");
+  return scratch(scope, H5Acreate2(owner, name.c_str(), type, space.id(), H5P_DEFAULT, H5P_DEFAULT),
+                 "H5Acreate2");
+}
+
+}  // namespace
+
+void Object::set_attribute(std::string_view attr, std::string_view value) {
+  const std::string a(attr), v(value);
+  ErrorScope scope(where() + " attribute " + a);
+  Handle type = variable_string_type(scope);
+  Handle at = fresh_scalar_attribute(scope, handle_.id(), a, type.id());
+  const char* p = v.c_str();
+  scope.check(H5Awrite(at.id(), type.id(), &p), "H5Awrite");
+}
+
+void Object::set_attribute(std::string_view attr, double value) {
+  const std::string a(attr);
+  ErrorScope scope(where() + " attribute " + a);
+  Handle at = fresh_scalar_attribute(scope, handle_.id(), a, H5T_IEEE_F64LE);
+  scope.check(H5Awrite(at.id(), H5T_NATIVE_DOUBLE, &value), "H5Awrite");
+}
+
+void Object::set_attribute(std::string_view attr, std::int64_t value) {
+  const std::string a(attr);
+  ErrorScope scope(where() + " attribute " + a);
+  Handle at = fresh_scalar_attribute(scope, handle_.id(), a, H5T_STD_I64LE);
+  scope.check(H5Awrite(at.id(), H5T_NATIVE_INT64, &value), "H5Awrite");
+}
+
+std::string Object::string_attribute(std::string_view attr) const {
+  const std::string a(attr);
+  ErrorScope scope(where() + " attribute " + a);
+  Handle at = scratch(scope, H5Aopen(handle_.id(), a.c_str(), H5P_DEFAULT), "H5Aopen");
+  Handle ftype = scratch(scope, H5Aget_type(at.id()), "H5Aget_type");
+  if (H5Tget_class(ftype.id()) != H5T_STRING) scope.fail("reading a string (the attribute is not one)");
+  if (scope.check(H5Tis_variable_str(ftype.id()), "H5Tis_variable_str") > 0) {
+    Handle mtype = variable_string_type(scope);
+    char* p = nullptr;
+    scope.check(H5Aread(at.id(), mtype.id(), &p), "H5Aread");
+    std::string out = p ? p : "";
+    H5free_memory(p);
+    return out;
+  }
+  const std::size_t size = H5Tget_size(ftype.id());
+  Handle mtype = scratch(scope, H5Tcopy(H5T_C_S1), "H5Tcopy");
+  scope.check(H5Tset_size(mtype.id(), size + 1), "H5Tset_size");
+  scope.check(H5Tset_strpad(mtype.id(), H5T_STR_NULLTERM), "H5Tset_strpad");
+  std::string buf(size + 1, '\0');
+  scope.check(H5Aread(at.id(), mtype.id(), buf.data()), "H5Aread");
+  buf.resize(buf.find('\0'));
+  if (H5Tget_strpad(ftype.id()) == H5T_STR_SPACEPAD) {
+    buf.erase(buf.find_last_not_of(' ') + 1);
+  }
+  return buf;
+}
+
+double Object::double_attribute(std::string_view attr) const {
+  const std::string a(attr);
+  ErrorScope scope(where() + " attribute " + a);
+  Handle at = scratch(scope, H5Aopen(handle_.id(), a.c_str(), H5P_DEFAULT), "H5Aopen");
+  double value = 0.0;
+  scope.check(H5Aread(at.id(), H5T_NATIVE_DOUBLE, &value), "H5Aread");
+  return value;
+}
+
+std::int64_t Object::int_attribute(std::string_view attr) const {
+  const std::string a(attr);
+  ErrorScope scope(where() + " attribute " + a);
+  Handle at = scratch(scope, H5Aopen(handle_.id(), a.c_str(), H5P_DEFAULT), "H5Aopen");
+  std::int64_t value = 0;
+  scope.check(H5Aread(at.id(), H5T_NATIVE_INT64, &value), "H5Aread");
+  return value;
+}
+
+// --------------------------------------------------------------------------------------------------- Dataset
+
+std::uint64_t Dataset::element_count(const Dims& dims) {
+  std::uint64_t n = 1;
+  for (auto d : dims) n *= d;
+  return n;
+}
+
+std::uint64_t Dataset::row_size(const Dims& dims) {
+  std::uint64_t n = 1;
+  for (std::size_t k = 1; k < dims.size(); ++k) n *= dims[k];
+  return n;
+}
+
+Dims Dataset::dims() const {
+  ErrorScope scope(where());
+  Handle space = scratch(scope, H5Dget_space(handle_.id()), "H5Dget_space");
+  const int rank = scope.check(H5Sget_simple_extent_ndims(space.id()), "H5Sget_simple_extent_ndims");
+  std::vector<hsize_t> d(static_cast<std::size_t>(rank));
+  scope.check(H5Sget_simple_extent_dims(space.id(), d.data(), nullptr), "H5Sget_simple_extent_dims");
+  return {d.begin(), d.end()};
+}
+
+std::uint64_t Dataset::rows() const {
+  const Dims d = dims();
+  return d.empty() ? 1 : d[0];
+}
+
+DType Dataset::dtype() const {
+  ErrorScope scope(where());
+  Handle t = scratch(scope, H5Dget_type(handle_.id()), "H5Dget_type");
+  const std::size_t size = H5Tget_size(t.id());
+  switch (H5Tget_class(t.id())) {
+    case H5T_FLOAT:
+      if (size == 4) return DType::f32;
+      if (size == 8) return DType::f64;
+      break;
+    case H5T_INTEGER: {
+      const bool is_signed = H5Tget_sign(t.id()) == H5T_SGN_2;
+      if (size == 1) return is_signed ? DType::i8 : DType::u8;
+      if (size == 4) return is_signed ? DType::i32 : DType::u32;
+      if (size == 8) return is_signed ? DType::i64 : DType::u64;
+      break;
+    }
+    default: break;
+  }
+  scope.fail("mapping its element type (unsupported class or size)");
+}
+
+void Dataset::write_raw(const void* data, DType type, std::size_t count) {
+  const Dims d = dims();
+  ErrorScope scope(where());
+  if (count != element_count(d)) {
+    scope.fail("writing " + std::to_string(count) + " values into " + std::to_string(element_count(d)) +
+               " elements");
+  }
+  if (count == 0) return;
+  scope.check(H5Dwrite(handle_.id(), memory_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dwrite");
+}
+
+void Dataset::append_raw(const void* data, DType type, std::size_t count, std::uint64_t rows) {
+  Dims d = dims();
+  ErrorScope scope(where());
+  if (d.empty()) scope.fail("appending to a scalar dataset");
+  const std::uint64_t row = row_size(d);
+  if (rows == kRowsFromSize) {
+    if (row == 0 || count == 0 || count % row != 0) {
+      scope.fail("appending " + std::to_string(count) + " values in rows of " + std::to_string(row));
+    }
+    rows = count / row;
+  } else if (rows * row != count) {
+    scope.fail("appending " + std::to_string(rows) + " rows of " + std::to_string(row) + " from " +
+               std::to_string(count) + " values");
+  }
+  if (rows == 0) return;
+  std::vector<hsize_t> start(d.size(), 0), extent = to_hsize(d);
+  start[0] = d[0];
+  extent[0] = d[0] + rows;
+  scope.check(H5Dset_extent(handle_.id(), extent.data()), "H5Dset_extent");
+  if (count == 0) return;
+  std::vector<hsize_t> block = to_hsize(d);
+  block[0] = rows;
+  Handle fspace = scratch(scope, H5Dget_space(handle_.id()), "H5Dget_space");
+  scope.check(H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, start.data(), nullptr, block.data(), nullptr),
+              "H5Sselect_hyperslab");
+  const hsize_t n = count;
+  Handle mspace = scratch(scope, H5Screate_simple(1, &n, nullptr), "H5Screate_simple");
+  scope.check(H5Dwrite(handle_.id(), memory_type(type), mspace.id(), fspace.id(), H5P_DEFAULT, data), "H5Dwrite");
+}
+
+void Dataset::read_rows_raw(void* out, DType type, std::uint64_t first, std::uint64_t count,
+                            std::size_t size) const {
+  const Dims d = dims();
+  ErrorScope scope(where());
+  if (d.empty()) {  // scalar
+    if (first != 0 || count != 1 || size != 1) scope.fail("reading rows of a scalar dataset");
+    scope.check(H5Dread(handle_.id(), memory_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, out), "H5Dread");
+    return;
+  }
+  if (first + count > d[0]) {
+    scope.fail("reading rows " + std::to_string(first) + ".." + std::to_string(first + count) + " of " +
+               std::to_string(d[0]));
+  }
+  if (size == 0) return;
+  std::vector<hsize_t> start(d.size(), 0), block = to_hsize(d);
+  start[0] = first;
+  block[0] = count;
+  Handle fspace = scratch(scope, H5Dget_space(handle_.id()), "H5Dget_space");
+  scope.check(H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, start.data(), nullptr, block.data(), nullptr),
+              "H5Sselect_hyperslab");
+  const hsize_t n = size;
+  Handle mspace = scratch(scope, H5Screate_simple(1, &n, nullptr), "H5Screate_simple");
+  scope.check(H5Dread(handle_.id(), memory_type(type), mspace.id(), fspace.id(), H5P_DEFAULT, out), "H5Dread");
+}
+
+// ----------------------------------------------------------------------------------------------------- Group
+
+bool Group::exists(std::string_view child) const {
+  const std::string c(child);
+  ErrorScope scope(where_of(child));
+  return scope.check(H5Lexists(handle_.id(), c.c_str(), H5P_DEFAULT), "H5Lexists") > 0;
+}
+
+Group Group::create_group(std::string_view child) {
+  const std::string c(child), w = where_of(child);
+  ErrorScope scope(w);
+  Handle lcpl = intermediate_groups(scope);
+  const hid_t id = scope.check(H5Gcreate2(handle_.id(), c.c_str(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT),
+                               "H5Gcreate2");
+  return Group(Handle(id, w), child_name(child), file_);
+}
+
+Group Group::open_group(std::string_view child) const {
+  const std::string c(child), w = where_of(child);
+  ErrorScope scope(w);
+  const hid_t id = scope.check(H5Gopen2(handle_.id(), c.c_str(), H5P_DEFAULT), "H5Gopen2");
+  return Group(Handle(id, w), child_name(child), file_);
+}
+
+Group Group::require_group(std::string_view child) {
+  return exists(child) ? open_group(child) : create_group(child);
+}
+
+Dataset Group::create_dataset(std::string_view child, DType type, const Dims& dims) {
+  const std::string c(child), w = where_of(child);
+  ErrorScope scope(w);
+  if (dims.empty()) scope.fail("creating a dataset of rank 0");
+  const auto d = to_hsize(dims);
+  Handle space = scratch(scope, H5Screate_simple(static_cast<int>(d.size()), d.data(), nullptr),
+                         "H5Screate_simple");
+  Handle lcpl = intermediate_groups(scope);
+  const hid_t id = scope.check(
+      H5Dcreate2(handle_.id(), c.c_str(), file_type(type), space.id(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT),
+      "H5Dcreate2");
+  return Dataset(Handle(id, w), child_name(child), file_);
+}
+
+Dataset Group::create_series(std::string_view child, DType type, const Dims& row_dims, std::uint64_t chunk_rows,
+                             int deflate_level) {
+  const std::string c(child), w = where_of(child);
+  ErrorScope scope(w);
+  const std::size_t rank = row_dims.size() + 1;
+  std::vector<hsize_t> dims(rank, 0), max_dims(rank, H5S_UNLIMITED), chunk(rank, 1);
+  hsize_t row_bytes = H5Tget_size(file_type(type));
+  for (std::size_t k = 1; k < rank; ++k) {
+    dims[k] = row_dims[k - 1];
+    // A zero extent can only be chunked if it may grow; any other extent is fixed.
+    if (dims[k] > 0) max_dims[k] = dims[k];
+    chunk[k] = std::max<hsize_t>(dims[k], 1);
+    row_bytes *= chunk[k];
+  }
+  // Keep a chunk well under HDF5's 4 GiB limit, and at least one row.
+  constexpr hsize_t kMaxChunkBytes = hsize_t{1} << 28;
+  chunk[0] = std::clamp<hsize_t>(chunk_rows, 1, std::max<hsize_t>(1, kMaxChunkBytes / row_bytes));
+
+  Handle space = scratch(scope, H5Screate_simple(static_cast<int>(rank), dims.data(), max_dims.data()),
+                         "H5Screate_simple");
+  Handle dcpl = scratch(scope, H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate");
+  scope.check(H5Pset_chunk(dcpl.id(), static_cast<int>(rank), chunk.data()), "H5Pset_chunk");
+  if (deflate_level > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    scope.check(H5Pset_shuffle(dcpl.id()), "H5Pset_shuffle");
+    scope.check(H5Pset_deflate(dcpl.id(), static_cast<unsigned>(std::min(deflate_level, 9))), "H5Pset_deflate");
+  }
+  Handle lcpl = intermediate_groups(scope);
+  const hid_t id = scope.check(
+      H5Dcreate2(handle_.id(), c.c_str(), file_type(type), space.id(), lcpl.id(), dcpl.id(), H5P_DEFAULT),
+      "H5Dcreate2");
+  return Dataset(Handle(id, w), child_name(child), file_);
+}
+
+Dataset Group::open_dataset(std::string_view child) const {
+  const std::string c(child), w = where_of(child);
+  ErrorScope scope(w);
+  const hid_t id = scope.check(H5Dopen2(handle_.id(), c.c_str(), H5P_DEFAULT), "H5Dopen2");
+  return Dataset(Handle(id, w), child_name(child), file_);
+}
+
+// ------------------------------------------------------------------------------------------------------ File
+
+File::File(const fs::path& path, Mode mode) : path_(path) {
+  const std::string name = path.string();
+  ErrorScope scope(name);
+  hid_t id = -1;
+  switch (mode) {
+    case Mode::truncate: id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); break;
+    case Mode::exclusive: id = H5Fcreate(name.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT); break;
+    case Mode::read_only: id = H5Fopen(name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT); break;
+    case Mode::read_write: id = H5Fopen(name.c_str(), H5F_ACC_RDWR, H5P_DEFAULT); break;
+  }
+  file_ = Handle(scope.check(id, mode == Mode::truncate || mode == Mode::exclusive ? "H5Fcreate" : "H5Fopen"),
+                 name);
+  const hid_t root = scope.check(H5Gopen2(file_.id(), "/", H5P_DEFAULT), "H5Gopen2");
+  root_ = Group(Handle(root, name + ":/"), "/", path_);
+}
+
+void File::flush() {
+  ErrorScope scope(path_.string());
+  scope.check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush");
+}
+
+void File::close() {
+  if (!file_.valid()) return;
+  root_ = Group();
+  ErrorScope scope(path_.string());
+  scope.check(H5Fclose(static_cast<hid_t>(file_.release())), "H5Fclose");
+}
+
+}  // namespace polyfloe::io::hdf5

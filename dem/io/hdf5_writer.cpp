@@ -1,0 +1,222 @@
+#include "io/hdf5_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <system_error>
+#include <vector>
+
+#include "dynamics/world.h"
+#include "io/hdf5_file.h"
+
+namespace polyfloe::io {
+
+using hdf5::Dataset;
+using hdf5::Dims;
+using hdf5::DType;
+
+namespace {
+
+constexpr std::uint64_t kSeriesChunk = 256;  // rows per chunk of the 1-D and small series
+
+void units(Dataset& d, const char* u, const char* description = nullptr) {
+  d.set_attribute("units", u);
+  if (description) d.set_attribute("description", description);
+}
+
+// Creates the file's folder if needed; returns the path unchanged.
+const std::filesystem::path& with_parent_folder(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!path.parent_path().empty()) std::filesystem::create_directories(path.parent_path(), ec);
+  if (ec) throw IoError("cannot create the folder of " + path.string() + ": " + ec.message());
+  return path;
+}
+
+}  // namespace
+
+struct Hdf5Writer::Impl {
+  hdf5::File file;
+  std::uint64_t bodies = 0;
+  std::vector<dynamics::BodyId> ids;
+  std::vector<double> centre_z;  // height of each body's centre of mass: h/2 - draft [m]
+  int frames = 0;
+  Dataset time;
+  Dataset position, orientation, velocity, angular_velocity;
+  Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum,
+      angular_momentum;
+  // scratch rows
+  std::vector<double> row3, row4;
+
+  Impl(const std::filesystem::path& path, const dynamics::World& world, const RunInfo& info, double water_density)
+      : file(with_parent_folder(path), hdf5::File::Mode::truncate), bodies(world.size()) {
+    if (!(water_density > 0.0) || !std::isfinite(water_density)) {
+      throw IoError("HDF5 output " + path.string() + ": water density must be positive");
+    }
+    auto& root = file.root();
+    root.set_attribute("created_by", "PolyFloe");
+    root.set_attribute("code_version", info.version);
+    root.set_attribute("scene_path", info.scene_path);
+    root.set_attribute("scene_text", info.scene_text);
+    root.set_attribute("overrides", info.overrides);
+    root.set_attribute("dt", info.dt);
+    root.set_attribute("water_density", water_density);
+
+    const auto n = static_cast<int>(bodies);
+    ids.resize(bodies);
+    centre_z.resize(bodies);
+    std::vector<double> thickness(bodies), mass(bodies), inertia(bodies), xy;
+    std::vector<std::int8_t> motion(bodies);
+    std::vector<std::int64_t> offsets{0};
+    for (int i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      ids[k] = world.id(i);
+      thickness[k] = world.thickness(i);
+      mass[k] = world.mass(i);
+      inertia[k] = world.inertia(i);
+      motion[k] = static_cast<std::int8_t>(world.motion(i));
+      const auto& shape = world.shape(i);
+      for (const auto& v : shape.vertices()) {
+        xy.push_back(v.x());
+        xy.push_back(v.y());
+      }
+      offsets.push_back(offsets.back() + shape.size());
+      const double volume = shape.area() * thickness[k];                   // [m^3]
+      const double density = volume > 0.0 ? mass[k] / volume : 0.0;       // [kg/m^3]
+      double draft = thickness[k] * density / water_density;              // [m]
+      if (!std::isfinite(draft)) draft = 0.0;
+      centre_z[k] = 0.5 * thickness[k] - draft;
+    }
+    auto floes = root.create_group("floes");
+    auto d = floes.write_dataset<std::uint64_t>("id", ids);
+    units(d, "1", "stable body id");
+    d = floes.write_dataset<double>("thickness", thickness);
+    units(d, "m");
+    d = floes.write_dataset<double>("mass", mass);
+    units(d, "kg");
+    d = floes.write_dataset<double>("inertia", inertia);
+    units(d, "kg m^2", "moment of inertia about the vertical axis through the centre of mass");
+    d = floes.write_dataset<std::int8_t>("motion", motion);
+    units(d, "1", "0 dynamic, 1 fixed, 2 kinematic");
+    d = floes.write_dataset<std::int64_t>("polygon_offsets", offsets);
+    units(d, "1", "body i has the vertex rows polygon_offsets[i] .. polygon_offsets[i+1]-1 of polygon_xy");
+    d = floes.write_dataset<double>("polygon_xy", xy, Dims{xy.size() / 2, 2});
+    units(d, "m", "body-frame vertices (centre of mass at the origin), counter-clockwise");
+
+    auto root_series = [&](hdf5::Group& g, const char* name, DType type, const Dims& row, std::uint64_t chunk,
+                           const char* u, const char* description = nullptr) {
+      Dataset s = g.create_series(name, type, row, chunk);
+      units(s, u, description);
+      return s;
+    };
+    time = root_series(root, "time", DType::f64, {}, kSeriesChunk, "s");
+    auto state = root.create_group("state");
+    position = root_series(state, "position", DType::f64, {bodies, 3}, 1, "m",
+                           "centre of mass (x, y, z); z = thickness/2 - draft");
+    orientation = root_series(state, "orientation", DType::f64, {bodies, 4}, 1, "1",
+                              "unit quaternion (w, x, y, z) of the body frame");
+    velocity = root_series(state, "velocity", DType::f64, {bodies, 3}, 1, "m/s");
+    angular_velocity = root_series(state, "angular_velocity", DType::f64, {bodies, 3}, 1, "rad/s");
+    auto diag = root.create_group("diagnostics");
+    kinetic_energy = root_series(diag, "kinetic_energy", DType::f64, {}, kSeriesChunk, "J",
+                                 "dynamic bodies, translation + rotation");
+    contact_count = root_series(diag, "contact_count", DType::i64, {}, kSeriesChunk, "1");
+    max_speed = root_series(diag, "max_speed", DType::f64, {}, kSeriesChunk, "m/s", "over dynamic bodies");
+    mean_speed = root_series(diag, "mean_speed", DType::f64, {}, kSeriesChunk, "m/s", "over dynamic bodies");
+    max_overlap_depth = root_series(diag, "max_overlap_depth", DType::f64, {}, kSeriesChunk, "m");
+    linear_momentum = root_series(diag, "linear_momentum", DType::f64, {2}, kSeriesChunk, "kg m/s",
+                                  "dynamic bodies");
+    angular_momentum = root_series(diag, "angular_momentum", DType::f64, {}, kSeriesChunk, "kg m^2/s",
+                                   "dynamic bodies, about the origin");
+    file.flush();
+  }
+
+  void write_frame(const dynamics::World& world) {
+    if (world.size() != bodies) {
+      throw IoError(file.path().string() + ": the world has " + std::to_string(world.size()) +
+                    " bodies, the file was started with " + std::to_string(bodies));
+    }
+    const auto n = static_cast<int>(bodies);
+    for (int i = 0; i < n; ++i) {
+      if (world.id(i) != ids[static_cast<std::size_t>(i)]) {
+        throw IoError(file.path().string() + ": body " + std::to_string(i) + " has id " +
+                      std::to_string(world.id(i)) + ", the file was started with " +
+                      std::to_string(ids[static_cast<std::size_t>(i)]));
+      }
+    }
+    const auto pos = world.positions();
+    const auto yaw = world.yaws();
+    const auto vel = world.velocities();
+    const auto omega = world.angular_velocities();
+
+    const double t = world.time();
+    time.append_rows<double>({&t, 1}, 1);
+
+    row3.assign(3 * bodies, 0.0);
+    for (std::size_t k = 0; k < bodies; ++k) {
+      row3[3 * k] = pos[k].x();
+      row3[3 * k + 1] = pos[k].y();
+      row3[3 * k + 2] = centre_z[k];
+    }
+    position.append_rows<double>(row3, 1);
+    row4.assign(4 * bodies, 0.0);
+    for (std::size_t k = 0; k < bodies; ++k) {
+      row4[4 * k] = std::cos(0.5 * yaw[k]);
+      row4[4 * k + 3] = std::sin(0.5 * yaw[k]);
+    }
+    orientation.append_rows<double>(row4, 1);
+    for (std::size_t k = 0; k < bodies; ++k) {
+      row3[3 * k] = vel[k].x();
+      row3[3 * k + 1] = vel[k].y();
+      row3[3 * k + 2] = 0.0;
+    }
+    velocity.append_rows<double>(row3, 1);
+    for (std::size_t k = 0; k < bodies; ++k) {
+      row3[3 * k] = 0.0;
+      row3[3 * k + 1] = 0.0;
+      row3[3 * k + 2] = omega[k];
+    }
+    angular_velocity.append_rows<double>(row3, 1);
+
+    double speed_max = 0.0, speed_sum = 0.0;
+    std::size_t dynamic = 0;
+    for (int i = 0; i < n; ++i) {
+      if (world.motion(i) != dynamics::Motion::dynamic) continue;
+      const double s = vel[static_cast<std::size_t>(i)].norm();
+      speed_max = std::max(speed_max, s);
+      speed_sum += s;
+      ++dynamic;
+    }
+    const double speed_mean = dynamic > 0 ? speed_sum / static_cast<double>(dynamic) : 0.0;
+    double depth_max = 0.0;
+    for (const auto& c : world.contacts()) depth_max = std::max(depth_max, c.geometry.depth);
+    const auto contacts = static_cast<std::int64_t>(world.contacts().size());
+    const double ke = world.kinetic_energy();
+    const auto p = world.linear_momentum();
+    const double p2[2] = {p.x(), p.y()};
+    const double l = world.angular_momentum();
+
+    kinetic_energy.append_rows<double>({&ke, 1}, 1);
+    contact_count.append_rows<std::int64_t>({&contacts, 1}, 1);
+    max_speed.append_rows<double>({&speed_max, 1}, 1);
+    mean_speed.append_rows<double>({&speed_mean, 1}, 1);
+    max_overlap_depth.append_rows<double>({&depth_max, 1}, 1);
+    linear_momentum.append_rows<double>(p2, 1);
+    angular_momentum.append_rows<double>({&l, 1}, 1);
+    ++frames;
+    file.flush();
+  }
+};
+
+Hdf5Writer::Hdf5Writer(const std::filesystem::path& file, const dynamics::World& world, const RunInfo& info,
+                       double water_density)
+    : impl_(std::make_unique<Impl>(file, world, info, water_density)) {}
+
+Hdf5Writer::~Hdf5Writer() = default;
+Hdf5Writer::Hdf5Writer(Hdf5Writer&&) noexcept = default;
+Hdf5Writer& Hdf5Writer::operator=(Hdf5Writer&&) noexcept = default;
+
+void Hdf5Writer::write_frame(const dynamics::World& world) { impl_->write_frame(world); }
+void Hdf5Writer::flush() { impl_->file.flush(); }
+int Hdf5Writer::frames() const { return impl_->frames; }
+const std::filesystem::path& Hdf5Writer::path() const { return impl_->file.path(); }
+
+}  // namespace polyfloe::io

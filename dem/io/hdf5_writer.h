@@ -1,0 +1,57 @@
+// HDF5 time series of a run: static floe data once, then one row per frame of state and diagnostics.
+//
+//   /time [T]                                  [s]
+//   /floes/id [N] uint64, thickness [N] [m], mass [N] [kg], inertia [N] [kg m^2], motion [N] int8
+//          (0 dynamic, 1 fixed, 2 kinematic), polygon_offsets [N+1] int64, polygon_xy [V,2] [m]
+//          (body-frame vertices of body i: rows polygon_offsets[i] .. polygon_offsets[i+1]-1, counter-clockwise)
+//   /state/position [T,N,3] [m]                centre of mass; z = h/2 - draft
+//          orientation [T,N,4]                 unit quaternion (w, x, y, z) = (cos(yaw/2), 0, 0, sin(yaw/2))
+//          velocity [T,N,3] [m/s], angular_velocity [T,N,3] [rad/s] (0, 0, omega)
+//   /diagnostics/kinetic_energy [T] [J], contact_count [T], max_speed [T] [m/s], mean_speed [T] [m/s]
+//          (both over dynamic bodies), max_overlap_depth [T] [m], linear_momentum [T,2] [kg m/s],
+//          angular_momentum [T] [kg m^2/s]
+//
+// Every dataset carries a "units" attribute; the root carries scene_path, scene_text, code_version, overrides,
+// dt, water_density and created_by = "PolyFloe". The file is flushed after each frame, so a run killed between
+// frames leaves every written frame readable. The set of bodies must not change during the run.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace polyfloe::dynamics {
+class World;
+}
+
+namespace polyfloe::io {
+
+struct RunInfo {
+  std::string scene_path;  // the scene file as given
+  std::string scene_text;  // its full text
+  std::string version;     // code version
+  std::string overrides;   // the --set arguments joined by newlines
+  double dt = 0.0;         // time step [s]
+};
+
+class Hdf5Writer {
+ public:
+  // Creates (replaces) `file` and writes the static data of `world`'s bodies. Throws IoError naming the file.
+  Hdf5Writer(const std::filesystem::path& file, const dynamics::World& world, const RunInfo& info,
+             double water_density);
+  ~Hdf5Writer();
+  Hdf5Writer(Hdf5Writer&&) noexcept;
+  Hdf5Writer& operator=(Hdf5Writer&&) noexcept;
+
+  // Appends one frame at world.time() and flushes. Throws IoError if the bodies differ from the first frame's.
+  void write_frame(const dynamics::World& world);
+  void flush();
+  int frames() const;
+  const std::filesystem::path& path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace polyfloe::io

@@ -1,0 +1,320 @@
+#include "io/vtk_writer.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCommand.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkTypeInt32Array.h>
+#include <vtkTypeUInt64Array.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <system_error>
+
+#include "dynamics/world.h"
+#include "io/atomic_file.h"
+
+namespace polyfloe::io {
+namespace fs = std::filesystem;
+namespace {
+
+// Shortest text that reads back to the same double.
+std::string exact(double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string frame_name(const char* stem, int frame) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s_%06d.vtp", stem, frame);
+  return buf;
+}
+
+template <class Array>
+vtkSmartPointer<Array> make_array(const char* name, int components, vtkIdType tuples) {
+  auto a = vtkSmartPointer<Array>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(tuples);
+  return a;
+}
+
+// Collects VTK error messages of one object instead of letting them go to the output window.
+class ErrorCatcher {
+ public:
+  explicit ErrorCatcher(vtkObject* watched) {
+    callback_->SetCallback(&ErrorCatcher::on_error);
+    callback_->SetClientData(&messages_);
+    watched->AddObserver(vtkCommand::ErrorEvent, callback_);
+  }
+  const std::string& messages() const { return messages_; }
+
+ private:
+  static void on_error(vtkObject*, unsigned long, void* client, void* call) {
+    auto* messages = static_cast<std::string*>(client);
+    if (!messages->empty()) *messages += "; ";
+    *messages += call ? static_cast<const char*>(call) : "unknown VTK error";
+  }
+  vtkNew<vtkCallbackCommand> callback_;
+  std::string messages_;
+};
+
+// Writes `data` to `target` via a temporary sibling: binary appended, zlib-compressed, 64-bit headers.
+void write_polydata(vtkPolyData* data, const fs::path& target) {
+  const fs::path tmp = temporary_sibling(target);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  ErrorCatcher errors(writer);
+  writer->SetFileName(tmp.c_str());
+  writer->SetInputData(data);
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->SetCompressorTypeToZLib();
+  writer->SetHeaderTypeToUInt64();
+  const int ok = writer->Write();
+  if (ok != 1 || writer->GetErrorCode() != 0 || !errors.messages().empty()) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw IoError("cannot write " + target.string() + ": " +
+                  (errors.messages().empty() ? std::string("vtkXMLPolyDataWriter failed") : errors.messages()));
+  }
+  commit_file_atomic(tmp, target);
+}
+
+void add_time(vtkPolyData* data, const dynamics::World& world) {
+  auto time = make_array<vtkDoubleArray>("TIME", 1, 1);
+  time->SetValue(0, world.time());
+  data->GetFieldData()->AddArray(time);
+  auto cycle = make_array<vtkTypeUInt64Array>("CYCLE", 1, 1);
+  cycle->SetValue(0, world.step_count());
+  data->GetFieldData()->AddArray(cycle);
+}
+
+// 0, 1, ..., count - 1
+vtkSmartPointer<vtkIdTypeArray> iota(vtkIdType count) {
+  auto a = vtkSmartPointer<vtkIdTypeArray>::New();
+  a->SetNumberOfValues(count);
+  for (vtkIdType c = 0; c < count; ++c) a->SetValue(c, c);
+  return a;
+}
+
+// Every body as a prism floating at its equilibrium draft: points are the bottom ring then the top ring of each
+// body; cells are the top polygon, the bottom polygon (reversed) and one quad per edge, all facing outward.
+vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double water_density) {
+  const int bodies = static_cast<int>(world.size());
+  vtkIdType n_points = 0, n_cells = 0, n_conn = 0;
+  for (int i = 0; i < bodies; ++i) {
+    const auto n = static_cast<vtkIdType>(world.world_vertices(i).size());
+    n_points += 2 * n;
+    n_cells += n + 2;
+    n_conn += 6 * n;  // top n + bottom n + 4 per side
+  }
+
+  auto coords = make_array<vtkDoubleArray>("Points", 3, n_points);
+  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
+  offsets->SetNumberOfValues(n_cells + 1);
+  auto conn = vtkSmartPointer<vtkIdTypeArray>::New();
+  conn->SetNumberOfValues(n_conn);
+
+  auto id = make_array<vtkTypeUInt64Array>("id", 1, n_cells);
+  auto velocity = make_array<vtkDoubleArray>("velocity", 3, n_cells);
+  auto speed = make_array<vtkDoubleArray>("speed", 1, n_cells);
+  auto omega = make_array<vtkDoubleArray>("angular_velocity", 1, n_cells);
+  auto thickness = make_array<vtkDoubleArray>("thickness", 1, n_cells);
+  auto motion = make_array<vtkTypeInt32Array>("motion", 1, n_cells);
+
+  const auto vel = world.velocities();
+  const auto ang = world.angular_velocities();
+  double* xyz = coords->GetPointer(0);
+  vtkIdType p0 = 0, cell = 0, k = 0;
+  offsets->SetValue(0, 0);
+  auto close_cell = [&] { offsets->SetValue(++cell, k); };
+  for (int i = 0; i < bodies; ++i) {
+    const auto ring = world.world_vertices(i);
+    const auto n = static_cast<vtkIdType>(ring.size());
+    const double h = world.thickness(i);                                    // [m]
+    const double volume = world.shape(i).area() * h;                        // [m^3]
+    const double density = volume > 0.0 ? world.mass(i) / volume : 0.0;    // [kg/m^3]
+    double draft = h * density / water_density;                             // [m]
+    if (!std::isfinite(draft)) draft = 0.0;
+    for (vtkIdType j = 0; j < n; ++j) {
+      const auto& v = ring[static_cast<std::size_t>(j)];
+      double* bottom = xyz + 3 * (p0 + j);
+      double* top = xyz + 3 * (p0 + n + j);
+      bottom[0] = top[0] = v.x();
+      bottom[1] = top[1] = v.y();
+      bottom[2] = -draft;
+      top[2] = h - draft;
+    }
+    const vtkIdType c0 = cell;
+    for (vtkIdType j = 0; j < n; ++j) conn->SetValue(k++, p0 + n + j);  // top, counter-clockwise from above
+    close_cell();
+    for (vtkIdType j = n - 1; j >= 0; --j) conn->SetValue(k++, p0 + j);  // bottom, reversed: faces down
+    close_cell();
+    for (vtkIdType j = 0; j < n; ++j) {  // side j: edge j -> j+1, outward to the right of the edge
+      const vtkIdType j1 = (j + 1) % n;
+      conn->SetValue(k++, p0 + j);
+      conn->SetValue(k++, p0 + j1);
+      conn->SetValue(k++, p0 + n + j1);
+      conn->SetValue(k++, p0 + n + j);
+      close_cell();
+    }
+    p0 += 2 * n;
+
+    const auto& u = vel[static_cast<std::size_t>(i)];
+    const double w = ang[static_cast<std::size_t>(i)];
+    const double s = u.norm();
+    const double vel3[3] = {u.x(), u.y(), 0.0};
+    for (vtkIdType c = c0; c < cell; ++c) {
+      id->SetValue(c, world.id(i));
+      velocity->SetTypedTuple(c, vel3);
+      speed->SetValue(c, s);
+      omega->SetValue(c, w);
+      thickness->SetValue(c, h);
+      motion->SetValue(c, static_cast<int>(world.motion(i)));
+    }
+  }
+
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetData(coords);
+  data->SetPoints(points);
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, conn);
+  data->SetPolys(polys);
+  for (vtkDataArray* a : {static_cast<vtkDataArray*>(id), static_cast<vtkDataArray*>(velocity),
+                          static_cast<vtkDataArray*>(speed), static_cast<vtkDataArray*>(omega),
+                          static_cast<vtkDataArray*>(thickness), static_cast<vtkDataArray*>(motion)}) {
+    data->GetCellData()->AddArray(a);
+  }
+  data->GetCellData()->SetActiveScalars("speed");
+  add_time(data, world);
+  return data;
+}
+
+// One vertex per active contact at its point (z = 0), with the contact's forces and geometry as point data.
+vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world) {
+  const auto& contacts = world.contacts();
+  const auto n = static_cast<vtkIdType>(contacts.size());
+  auto coords = make_array<vtkDoubleArray>("Points", 3, n);
+  auto force = make_array<vtkDoubleArray>("force", 3, n);
+  auto normal_force = make_array<vtkDoubleArray>("normal_force", 1, n);
+  auto tangential_force = make_array<vtkDoubleArray>("tangential_force", 1, n);
+  auto normal = make_array<vtkDoubleArray>("normal", 3, n);
+  auto depth = make_array<vtkDoubleArray>("depth", 1, n);
+  auto area = make_array<vtkDoubleArray>("overlap_area", 1, n);
+  auto id_a = make_array<vtkTypeUInt64Array>("id_a", 1, n);
+  auto id_b = make_array<vtkTypeUInt64Array>("id_b", 1, n);
+  auto sliding = make_array<vtkTypeInt32Array>("sliding", 1, n);
+  for (vtkIdType c = 0; c < n; ++c) {
+    const auto& r = contacts[static_cast<std::size_t>(c)];
+    const auto f = r.force_on_b();
+    const double p[3] = {r.geometry.point.x(), r.geometry.point.y(), 0.0};
+    const double f3[3] = {f.x(), f.y(), 0.0};
+    const double n3[3] = {r.geometry.normal.x(), r.geometry.normal.y(), 0.0};
+    coords->SetTypedTuple(c, p);
+    force->SetTypedTuple(c, f3);
+    normal->SetTypedTuple(c, n3);
+    normal_force->SetValue(c, r.normal_force);
+    tangential_force->SetValue(c, r.tangential_force);
+    depth->SetValue(c, r.geometry.depth);
+    area->SetValue(c, r.geometry.area);
+    id_a->SetValue(c, world.id(r.a));
+    id_b->SetValue(c, world.id(r.b));
+    sliding->SetValue(c, r.sliding ? 1 : 0);
+  }
+
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetData(coords);
+  data->SetPoints(points);
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(iota(n + 1), iota(n));  // offsets 0..n, connectivity 0..n-1
+  data->SetVerts(verts);
+  for (vtkDataArray* a :
+       {static_cast<vtkDataArray*>(force), static_cast<vtkDataArray*>(normal_force),
+        static_cast<vtkDataArray*>(tangential_force), static_cast<vtkDataArray*>(normal),
+        static_cast<vtkDataArray*>(depth), static_cast<vtkDataArray*>(area), static_cast<vtkDataArray*>(id_a),
+        static_cast<vtkDataArray*>(id_b), static_cast<vtkDataArray*>(sliding)}) {
+    data->GetPointData()->AddArray(a);
+  }
+  data->GetPointData()->SetActiveScalars("normal_force");
+  add_time(data, world);
+  return data;
+}
+
+}  // namespace
+
+PvdCollection::PvdCollection(fs::path file) : file_(std::move(file)) {}
+
+void PvdCollection::add(double time, const std::string& relative_file) {
+  entries_ += "    <DataSet timestep=\"" + exact(time) + "\" group=\"\" part=\"0\" file=\"" +
+              xml_escape(relative_file) + "\"/>\n";
+  ++count_;
+  write_file_atomic(file_, text());
+}
+
+std::string PvdCollection::text() const {
+  return "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <Collection>\n" +
+         entries_ +
+         "  </Collection>\n"
+         "</VTKFile>\n";
+}
+
+VtkSeriesWriter::VtkSeriesWriter(const fs::path& dir, bool write_contacts, double water_density)
+    : dir_(dir),
+      write_contacts_(write_contacts),
+      water_density_(water_density),
+      floes_pvd_(dir / "floes.pvd"),
+      contacts_pvd_(dir / "contacts.pvd") {
+  if (!(water_density > 0.0) || !std::isfinite(water_density)) {
+    throw IoError("VTK output " + dir.string() + ": water density must be positive, got " + exact(water_density));
+  }
+  std::error_code ec;
+  fs::create_directories(dir / "floes", ec);
+  if (!ec && write_contacts_) fs::create_directories(dir / "contacts", ec);
+  if (ec) throw IoError("cannot create VTK output folders in " + dir.string() + ": " + ec.message());
+}
+
+void VtkSeriesWriter::write_frame(const dynamics::World& world) {
+  const std::string floes_file = "floes/" + frame_name("floes", frames_);
+  write_polydata(floes_polydata(world, water_density_), dir_ / floes_file);
+  std::string contacts_file;
+  if (write_contacts_) {
+    contacts_file = "contacts/" + frame_name("contacts", frames_);
+    write_polydata(contacts_polydata(world), dir_ / contacts_file);
+  }
+  // Collections last: they only ever list frames that are complete on disk.
+  floes_pvd_.add(world.time(), floes_file);
+  if (write_contacts_) contacts_pvd_.add(world.time(), contacts_file);
+  ++frames_;
+}
+
+}  // namespace polyfloe::io

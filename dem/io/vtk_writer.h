@@ -1,0 +1,58 @@
+// VTK output for ParaView: one .vtp file per frame plus a .pvd collection that lists them with their times.
+//
+//   DIR/floes.pvd, DIR/floes/floes_NNNNNN.vtp          every body (walls too) as a prism
+//   DIR/contacts.pvd, DIR/contacts/contacts_NNNNNN.vtp  one vertex per active contact (optional)
+//
+// Each .vtp is written under a temporary name and renamed into place, and each .pvd is rewritten atomically
+// after the frame it lists, so a run killed at any moment leaves a collection that parses and lists only
+// complete frames. VTK itself stays behind this header (only the .cpp includes it).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace polyfloe::dynamics {
+class World;
+}
+
+namespace polyfloe::io {
+
+// A .pvd collection file: (time, relative file) entries, rewritten atomically on every add().
+class PvdCollection {
+ public:
+  explicit PvdCollection(std::filesystem::path file);
+  // Appends a DataSet entry; `relative_file` is relative to the .pvd's folder. Rewrites the file.
+  void add(double time, const std::string& relative_file);
+  const std::filesystem::path& path() const { return file_; }
+  std::size_t size() const { return count_; }
+  // The whole XML text as it is on disk.
+  std::string text() const;
+
+ private:
+  std::filesystem::path file_;
+  std::string entries_;  // the <DataSet .../> lines so far
+  std::size_t count_ = 0;
+};
+
+class VtkSeriesWriter {
+ public:
+  // Creates DIR (and DIR/floes, DIR/contacts) if needed; existing .pvd files there are replaced on the first
+  // frame. `water_density` [kg/m^3] sets each floe's draft, so prisms float at their equilibrium level.
+  VtkSeriesWriter(const std::filesystem::path& dir, bool write_contacts, double water_density);
+
+  // Writes frame number frames() at time world.time() [s]. Throws IoError naming the file on failure.
+  void write_frame(const dynamics::World& world);
+  int frames() const { return frames_; }
+
+  const std::filesystem::path& directory() const { return dir_; }
+
+ private:
+  std::filesystem::path dir_;
+  bool write_contacts_;
+  double water_density_;  // [kg/m^3]
+  int frames_ = 0;
+  PvdCollection floes_pvd_;
+  PvdCollection contacts_pvd_;
+};
+
+}  // namespace polyfloe::io

@@ -1,0 +1,180 @@
+// Scene -> World: explicit bodies first (their own ids, or the next free ones in order), then the channel walls, then
+// the generated floe field, which keeps clear of both.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "forcing/drift.h"
+#include "scene/channel.h"
+#include "scene/floe_field.h"
+#include "scene/scene.h"
+
+namespace polyfloe::scene {
+
+namespace {
+
+using dynamics::BodyDesc;
+using dynamics::BodyId;
+using dynamics::Motion;
+
+// A body placed before the floe field, for the initial-overlap checks and as an obstacle for the generator.
+struct PlacedBody {
+  std::string source;          // "channel.yaml:20:5 (floes.1)" for messages
+  std::vector<Vec2> vertices;  // world frame, counter-clockwise [m]
+  geometry::Aabb box;          // [m]
+  bool dynamic = false;
+};
+
+PlacedBody placed(std::string source, const geometry::ConvexPolygon& shape, const Vec2& position, double yaw,
+                  bool dynamic) {
+  PlacedBody p{std::move(source), {}, {}, dynamic};
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  for (const Vec2& v : shape.vertices()) p.vertices.push_back(position + geometry::rotate(v, c, s));
+  p.box.lo = p.box.hi = p.vertices.front();
+  for (const Vec2& v : p.vertices) {
+    p.box.lo = p.box.lo.cwiseMin(v);
+    p.box.hi = p.box.hi.cwiseMax(v);
+  }
+  return p;
+}
+
+// True when the interiors overlap by more than round-off (touching edges are fine).
+bool overlapping(const PlacedBody& a, const PlacedBody& b) {
+  if (!a.box.overlaps(b.box)) return false;
+  const double scale = std::max((a.box.hi - a.box.lo).maxCoeff(), (b.box.hi - b.box.lo).maxCoeff());
+  return polygon_separation(a.vertices, b.vertices) < -1e-9 * scale;
+}
+
+std::string body_source(const BodySpec& b, std::size_t i) {
+  const std::string name = "floes." + std::to_string(i);
+  return b.source.where.empty() ? name : b.source.where + " (" + name + ")";
+}
+
+void add(dynamics::World& world, const BodyDesc& desc, const std::string& source) {
+  try {
+    world.add_body(desc);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(source + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+double reference_speed(const Scene& scene) {
+  if (scene.time.reference_speed) return *scene.time.reference_speed;
+  const double drift = forcing::free_drift_velocity(scene.world.drift).norm();  // [m/s]
+  return std::isfinite(drift) ? std::max(1.0, drift) : 1.0;
+}
+
+double time_step(const Scene& scene, const dynamics::World& world) {
+  if (scene.time.dt) return *scene.time.dt;
+  const double duration = world.shortest_contact_duration(reference_speed(scene));  // [s]
+  if (!(duration > 0.0) || !std::isfinite(duration))
+    throw SceneError(scene.source_path + ": cannot choose an automatic time step (shortest contact duration " +
+                     std::to_string(duration) + " s); set run.dt");
+  return duration / scene.time.steps_per_contact;
+}
+
+dynamics::World build_world(const Scene& scene) {
+  dynamics::WorldSettings settings = scene.world;
+  settings.contact.reference_speed = reference_speed(scene);
+  dynamics::World world(settings);
+
+  // Ids: the given ones (unique), then the next free ones in list order.
+  std::map<BodyId, std::size_t> given;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodySpec& b = scene.bodies[i];
+    if (!b.id) continue;
+    if (auto [it, fresh] = given.emplace(*b.id, i); !fresh)
+      throw SceneError(body_source(b, i) + ": id " + std::to_string(*b.id) + " is already used by " +
+                       body_source(scene.bodies[it->second], it->second));
+  }
+  std::vector<BodyId> ids(scene.bodies.size());
+  BodyId next = 0;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].id) {
+      ids[i] = *scene.bodies[i].id;
+      continue;
+    }
+    while (given.count(next)) ++next;
+    ids[i] = next++;
+  }
+  for (BodyId id : ids) next = std::max(next, id + 1);
+
+  // Explicit bodies.
+  std::vector<PlacedBody> bodies;
+  double max_thickness = 0.0;  // of the dynamic bodies, for the walls' thickness [m]
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodySpec& b = scene.bodies[i];
+    const std::string source = body_source(b, i);
+    std::shared_ptr<const geometry::ConvexPolygon> shape;
+    try {
+      shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(b.polygon));
+    } catch (const geometry::GeometryError& e) {
+      throw SceneError(source + ": polygon: " + e.what());
+    }
+    const bool dynamic = b.motion == Motion::dynamic;
+    if (dynamic) max_thickness = std::max(max_thickness, b.thickness);
+    PlacedBody p = placed(source, *shape, b.position, b.yaw, dynamic);
+    for (const PlacedBody& q : bodies) {
+      if ((p.dynamic || q.dynamic) && overlapping(p, q))
+        throw SceneError(source + ": overlaps " + q.source + " initially; move them apart");
+    }
+    bodies.push_back(std::move(p));
+
+    BodyDesc desc;
+    desc.id = ids[i];
+    desc.shape = shape;
+    desc.position = b.position;
+    desc.yaw = b.yaw;
+    desc.velocity = b.velocity;
+    desc.angular_velocity = b.angular_velocity;
+    desc.thickness = b.thickness;
+    desc.density = scene.ice_density;
+    desc.motion = b.motion;
+    desc.external_force = b.external_force;
+    desc.external_torque = b.external_torque;
+    add(world, desc, source);
+  }
+  if (scene.floe_field) max_thickness = std::max(max_thickness, scene.floe_field->thickness);
+  if (!(max_thickness > 0.0)) max_thickness = 1.0;
+
+  // Channel walls: fixed, as thick as the thickest floe (their mass never enters the dynamics).
+  if (scene.channel) {
+    const std::string where = scene.channel->source.where.empty() ? "channel" : scene.channel->source.where;
+    for (const WallPolygon& wall : channel_walls(*scene.channel)) {
+      const std::string source = where + " (channel " + wall.name + ")";
+      Vec2 centre{0.0, 0.0};
+      auto shape = std::make_shared<const geometry::ConvexPolygon>(
+          geometry::ConvexPolygon::from_vertices(wall.vertices, &centre));
+      PlacedBody p = placed(source, *shape, centre, 0.0, false);
+      for (const PlacedBody& q : bodies) {
+        if (q.dynamic && overlapping(p, q)) throw SceneError(q.source + ": overlaps " + source + " initially");
+      }
+      bodies.push_back(std::move(p));
+      BodyDesc desc;
+      desc.id = next++;
+      desc.shape = shape;
+      desc.position = centre;
+      desc.thickness = max_thickness;
+      desc.density = scene.ice_density;
+      desc.motion = Motion::fixed;
+      add(world, desc, source);
+    }
+  }
+
+  // Generated floes, clear of everything above.
+  if (scene.floe_field) {
+    std::vector<std::vector<Vec2>> obstacles;
+    obstacles.reserve(bodies.size());
+    for (const PlacedBody& p : bodies) obstacles.push_back(p.vertices);
+    const FloeField field = generate_floe_field(*scene.floe_field, scene.ice_density, next, obstacles);
+    const std::string where = scene.floe_field->source.where.empty() ? "floe_field" : scene.floe_field->source.where;
+    for (const BodyDesc& desc : field.floes) add(world, desc, where);
+  }
+  return world;
+}
+
+}  // namespace polyfloe::scene

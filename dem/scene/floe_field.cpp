@@ -1,0 +1,345 @@
+#include "scene/floe_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+namespace polyfloe::scene {
+
+namespace {
+
+// splitmix64: derives independent engine seeds (sizes and shapes / placement) from the user's seed.
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (stream + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+double circle_area(double size) { return 0.25 * std::numbers::pi * size * size; }  // [m^2]
+
+std::string prefix(const FloeFieldSpec& spec) {
+  return spec.source.where.empty() ? std::string() : spec.source.where + ": ";
+}
+
+// A convex polygon prepared for repeated separating-axis tests: unit outward edge normals n_i and offsets
+// d_i = n_i . v_i, so that n_i . x - d_i is the signed distance of x from edge line i.
+struct PreparedPolygon {
+  std::vector<Vec2> v;       // [m]
+  std::vector<Vec2> n;       // [-]
+  std::vector<double> d;     // [m]
+  geometry::Aabb box;        // [m]
+};
+
+PreparedPolygon prepare(std::span<const Vec2> v) {
+  PreparedPolygon p;
+  p.v.assign(v.begin(), v.end());
+  const std::size_t k = v.size();
+  p.n.resize(k);
+  p.d.resize(k);
+  p.box.lo = p.box.hi = v[0];
+  for (std::size_t i = 0; i < k; ++i) {
+    const Vec2 e = v[(i + 1) % k] - v[i];
+    const double len = e.norm();
+    p.n[i] = len > 0.0 ? Vec2(geometry::perp_right(e) / len) : Vec2(0.0, 0.0);
+    p.d[i] = p.n[i].dot(v[i]);
+    p.box.lo = p.box.lo.cwiseMin(v[i]);
+    p.box.hi = p.box.hi.cwiseMax(v[i]);
+  }
+  return p;
+}
+
+// True when some edge normal of `a` has all of `b` at least `gap` beyond the edge line.
+bool separated_along_normals_of(const std::vector<Vec2>& an, const std::vector<double>& ad, const Vec2& a_shift,
+                                const std::vector<Vec2>& bv, const Vec2& b_shift, double gap) {
+  for (std::size_t i = 0; i < an.size(); ++i) {
+    const double d = ad[i] + an[i].dot(a_shift) - an[i].dot(b_shift) + gap;
+    bool all_beyond = true;
+    for (const Vec2& x : bv) {
+      if (an[i].dot(x) < d) {
+        all_beyond = false;
+        break;
+      }
+    }
+    if (all_beyond) return true;
+  }
+  return false;
+}
+
+// `a` (translated by a_shift) and `b` (translated by b_shift) are at least `gap` apart along some edge normal.
+bool separated(const PreparedPolygon& a, const Vec2& a_shift, const PreparedPolygon& b, const Vec2& b_shift,
+               double gap) {
+  return separated_along_normals_of(a.n, a.d, a_shift, b.v, b_shift, gap) ||
+         separated_along_normals_of(b.n, b.d, b_shift, a.v, a_shift, gap);
+}
+
+// Uniform grid over the region; each placed polygon is listed in every cell its box touches.
+class PlacementGrid {
+ public:
+  PlacementGrid(const Vec2& lo, const Vec2& hi, double cell) : lo_(lo), cell_(cell) {
+    nx_ = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x()) / cell)));
+    ny_ = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / cell)));
+    cells_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
+  }
+  // Cell index range [x0, x1] x [y0, y1] covered by the box (clamped); false if the box misses the grid.
+  bool range(const geometry::Aabb& b, int& x0, int& y0, int& x1, int& y1) const {
+    x0 = clamp_cell((b.lo.x() - lo_.x()) / cell_, nx_);
+    x1 = clamp_cell((b.hi.x() - lo_.x()) / cell_, nx_);
+    y0 = clamp_cell((b.lo.y() - lo_.y()) / cell_, ny_);
+    y1 = clamp_cell((b.hi.y() - lo_.y()) / cell_, ny_);
+    return b.hi.x() >= lo_.x() && b.hi.y() >= lo_.y() && b.lo.x() <= lo_.x() + nx_ * cell_ &&
+           b.lo.y() <= lo_.y() + ny_ * cell_;
+  }
+  void insert(const geometry::Aabb& b, int item) {
+    int x0, y0, x1, y1;
+    if (!range(b, x0, y0, x1, y1)) return;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) cells_[index(x, y)].push_back(item);
+  }
+  const std::vector<int>& cell(int x, int y) const { return cells_[index(x, y)]; }
+
+ private:
+  static int clamp_cell(double c, int n) {
+    if (!(c > 0.0)) return 0;
+    if (c >= n - 1) return n - 1;
+    return static_cast<int>(c);
+  }
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(x);
+  }
+  Vec2 lo_;
+  double cell_;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::vector<int>> cells_;
+};
+
+void check_spec(const FloeFieldSpec& s) {
+  auto fail = [&](const std::string& what) { throw SceneError(prefix(s) + "floe_field: " + what); };
+  if (!(s.region_max.x() > s.region_min.x()) || !(s.region_max.y() > s.region_min.y()))
+    fail("region must have xmax > xmin and ymax > ymin");
+  if (!(s.concentration > 0.0 && s.concentration < 1.0)) fail("concentration must lie in (0, 1)");
+  if (!(s.size_min > 0.0) || !(s.size_max >= s.size_min) || !std::isfinite(s.size_max))
+    fail("sizes must satisfy 0 < size.min <= size.max");
+  if (!std::isfinite(s.exponent)) fail("size.exponent must be finite");
+  if (s.corners_min < 3 || s.corners_max < s.corners_min || s.corners_max > 64)
+    fail("corners must satisfy 3 <= min <= max <= 64");
+  if (!(s.thickness > 0.0)) fail("thickness must be > 0");
+  if (s.max_attempts < 1) fail("max_attempts must be >= 1");
+}
+
+}  // namespace
+
+double FieldRandom::uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
+
+double FieldRandom::uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+
+int FieldRandom::uniform_int(int lo, int hi) {
+  const std::uint64_t n = static_cast<std::uint64_t>(static_cast<std::int64_t>(hi) - lo) + 1;
+  // Reject the lowest 2^64 mod n words so that every residue is equally likely.
+  const std::uint64_t threshold = (0 - n) % n;
+  std::uint64_t x = engine_();
+  while (x < threshold) x = engine_();
+  return static_cast<int>(static_cast<std::int64_t>(lo) + static_cast<std::int64_t>(x % n));
+}
+
+double power_law_quantile(double u, double a, double b, double alpha) {
+  u = std::clamp(u, 0.0, 1.0);
+  if (std::abs(alpha - 1.0) < 1e-12) return a * std::pow(b / a, u);
+  // F(x) = (x^(1-alpha) - a^(1-alpha)) / (b^(1-alpha) - a^(1-alpha))
+  const double g = 1.0 - alpha;
+  const double ag = std::pow(a, g), bg = std::pow(b, g);
+  return std::clamp(std::pow(ag + u * (bg - ag), 1.0 / g), a, b);
+}
+
+std::vector<double> floe_sizes(const FloeFieldSpec& spec, FieldRandom& rng) {
+  check_spec(spec);
+  const Vec2 extent = spec.region_max - spec.region_min;
+  const double target = spec.concentration * extent.x() * extent.y();  // [m^2]
+  const double area_min = circle_area(spec.size_min), area_max = circle_area(spec.size_max);
+  if (target < area_min) {
+    std::ostringstream msg;
+    msg << prefix(spec) << "floe_field: the target ice area " << target << " m^2 (concentration x region area) is "
+        << "smaller than one floe of size.min (" << area_min << " m^2); enlarge the region or the concentration";
+    throw SceneError(msg.str());
+  }
+  std::vector<double> areas;
+  double sum = 0.0;
+  while (true) {
+    const double x = power_law_quantile(rng.uniform(), spec.size_min, spec.size_max, spec.exponent);
+    const double a = circle_area(x);
+    if (sum + a < target) {
+      areas.push_back(a);
+      sum += a;
+      continue;
+    }
+    const double rest = target - sum;  // what the last floe must add [m^2]
+    if (rest >= area_min) {
+      areas.push_back(rest);
+    } else if (!areas.empty()) {
+      auto smallest = std::min_element(areas.begin(), areas.end());
+      if (*smallest + rest <= area_max) *smallest += rest;
+    }
+    break;
+  }
+  std::vector<double> sizes(areas.size());
+  std::transform(areas.begin(), areas.end(), sizes.begin(),
+                 [&](double a) { return std::clamp(std::sqrt(4.0 * a / std::numbers::pi), spec.size_min, spec.size_max); });
+  std::sort(sizes.begin(), sizes.end(), std::greater<>());
+  return sizes;
+}
+
+std::vector<Vec2> random_floe_polygon(FieldRandom& rng, int corners, double size) {
+  const int k = corners;
+  const double two_pi = 2.0 * std::numbers::pi;
+  const double min_gap = kMinGapFraction * two_pi / k;  // [rad]
+  // Spacings of k - 1 sorted uniforms on [0, 1] (k parts summing to 1), then each gap = min_gap + share of the rest.
+  std::vector<double> cuts(static_cast<std::size_t>(k - 1));
+  for (double& c : cuts) c = rng.uniform();
+  std::sort(cuts.begin(), cuts.end());
+  const double free_angle = two_pi - k * min_gap;  // [rad]
+  const double start = rng.uniform(0.0, two_pi);   // random orientation [rad]
+  std::vector<Vec2> v(static_cast<std::size_t>(k));
+  for (int i = 0; i < k; ++i) {
+    // vertex i sits after i gaps: i min_gaps plus the free angle up to cut i-1
+    const double share = i == 0 ? 0.0 : cuts[static_cast<std::size_t>(i - 1)];
+    const double angle = start + i * min_gap + free_angle * share;
+    v[static_cast<std::size_t>(i)] = Vec2(std::cos(angle), std::sin(angle));
+  }
+  const geometry::PolygonProperties props = geometry::polygon_properties(v);
+  const double scale = std::sqrt(circle_area(size) / props.area);
+  for (Vec2& x : v) x = scale * (x - props.centroid);
+  return v;
+}
+
+double polygon_separation(std::span<const Vec2> a, std::span<const Vec2> b) {
+  double best = -std::numeric_limits<double>::infinity();
+  auto along_normals = [&best](std::span<const Vec2> p, std::span<const Vec2> q) {
+    const std::size_t k = p.size();
+    for (std::size_t i = 0; i < k; ++i) {
+      const Vec2 e = p[(i + 1) % k] - p[i];
+      const double len = e.norm();
+      if (len <= 0.0) continue;
+      const Vec2 n = geometry::perp_right(e) / len;
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const Vec2& x : q) lowest = std::min(lowest, n.dot(x - p[i]));
+      best = std::max(best, lowest);
+    }
+  };
+  along_normals(a, b);
+  along_normals(b, a);
+  return best;
+}
+
+double placement_clearance(double size) { return std::min(0.01 * size, 0.5); }
+
+FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamics::BodyId first_id,
+                              std::span<const std::vector<Vec2>> obstacles) {
+  check_spec(spec);
+  FloeField field;
+  const Vec2 lo = spec.region_min, hi = spec.region_max;
+  field.region_area = (hi - lo).prod();
+
+  FieldRandom shape_rng(mix_seed(spec.seed, 0));
+  FieldRandom place_rng(mix_seed(spec.seed, 1));
+  const std::vector<double> sizes = floe_sizes(spec, shape_rng);
+
+  // Cells of about twice the smallest floe: the many small floes then test a handful of cells each, and the
+  // grid stays below ~4 million cells.
+  const double cell = std::max({2.0 * spec.size_min, (hi - lo).maxCoeff() / 2048.0, 1e-9});
+  PlacementGrid grid(lo, hi, cell);
+
+  std::vector<PreparedPolygon> placed;  // obstacles first, then floes
+  std::vector<Vec2> shift;              // world position of each placed polygon's frame [m]
+  placed.reserve(obstacles.size() + sizes.size());
+  for (const std::vector<Vec2>& o : obstacles) {
+    if (o.size() < 3) continue;
+    PreparedPolygon p = prepare(o);
+    if (!p.box.overlaps(geometry::Aabb{lo, hi})) continue;
+    grid.insert(p.box, static_cast<int>(placed.size()));
+    placed.push_back(std::move(p));
+    shift.emplace_back(0.0, 0.0);
+  }
+  std::vector<std::uint32_t> stamp(placed.size() + sizes.size(), 0);
+  std::uint32_t current_stamp = 0;
+
+  field.floes.reserve(sizes.size());
+  for (std::size_t f = 0; f < sizes.size(); ++f) {
+    const double size = sizes[f];
+    const int corners = shape_rng.uniform_int(spec.corners_min, spec.corners_max);
+    const std::vector<Vec2> raw = random_floe_polygon(shape_rng, corners, size);
+    auto shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(raw));
+    PreparedPolygon body = prepare(shape->vertices());
+    const double gap = placement_clearance(size);  // sizes descend: this floe is the smaller of any pair [m]
+
+    // Positions of the centroid that keep the whole polygon inside the region.
+    const Vec2 p_lo = lo - body.box.lo, p_hi = hi - body.box.hi;
+    if (p_lo.x() > p_hi.x() || p_lo.y() > p_hi.y()) {
+      std::ostringstream msg;
+      msg << prefix(spec) << "floe_field: floe " << f + 1 << " (size " << size
+          << " m) does not fit in the region; lower floe_field.size.max or enlarge floe_field.region";
+      throw SceneError(msg.str());
+    }
+    bool done = false;
+    for (int attempt = 0; attempt < spec.max_attempts && !done; ++attempt) {
+      ++field.attempts;
+      const Vec2 p(place_rng.uniform(p_lo.x(), p_hi.x()), place_rng.uniform(p_lo.y(), p_hi.y()));
+      const geometry::Aabb box{body.box.lo + p - Vec2(gap, gap), body.box.hi + p + Vec2(gap, gap)};
+      int x0, y0, x1, y1;
+      grid.range(box, x0, y0, x1, y1);
+      if (++current_stamp == 0) {  // wrapped: clear the marks
+        std::fill(stamp.begin(), stamp.end(), 0);
+        current_stamp = 1;
+      }
+      bool free = true;
+      for (int y = y0; y <= y1 && free; ++y) {
+        for (int x = x0; x <= x1 && free; ++x) {
+          for (int item : grid.cell(x, y)) {
+            if (stamp[static_cast<std::size_t>(item)] == current_stamp) continue;
+            stamp[static_cast<std::size_t>(item)] = current_stamp;
+            const PreparedPolygon& other = placed[static_cast<std::size_t>(item)];
+            const Vec2& other_shift = shift[static_cast<std::size_t>(item)];
+            const geometry::Aabb other_box{other.box.lo + other_shift, other.box.hi + other_shift};
+            if (!box.overlaps(other_box)) continue;
+            if (!separated(body, p, other, other_shift, gap)) {
+              free = false;
+              break;
+            }
+          }
+        }
+      }
+      if (!free) continue;
+
+      grid.insert(geometry::Aabb{body.box.lo + p, body.box.hi + p}, static_cast<int>(placed.size()));
+      placed.push_back(body);
+      shift.push_back(p);
+      dynamics::BodyDesc desc;
+      desc.id = first_id + f;
+      desc.shape = shape;
+      desc.position = p;
+      desc.yaw = 0.0;  // the random orientation is in the shape itself
+      desc.velocity = spec.velocity;
+      desc.thickness = spec.thickness;
+      desc.density = density;
+      desc.motion = dynamics::Motion::dynamic;
+      field.floes.push_back(std::move(desc));
+      field.ice_area += shape->area();
+      done = true;
+    }
+    if (!done) {
+      std::ostringstream msg;
+      msg.precision(4);
+      msg << prefix(spec) << "floe_field: could not place floe " << f + 1 << " of " << sizes.size() << " (size "
+          << size << " m) after " << spec.max_attempts << " attempts; the concentration reached is "
+          << field.ice_area / field.region_area << " of the target " << spec.concentration
+          << "; lower floe_field.concentration (or widen floe_field.size)";
+      throw SceneError(msg.str());
+    }
+  }
+  field.concentration = field.ice_area / field.region_area;
+  return field;
+}
+
+}  // namespace polyfloe::scene

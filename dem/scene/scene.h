@@ -1,0 +1,110 @@
+// A scene: everything a run needs, resolved and validated, in SI units. The YAML reader (scene_reader.h) makes
+// one from a file plus --set overrides; build_world() turns it into a World. Defaults live here and are listed
+// with their units and ranges in docs/scene-reference.md.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dynamics/world.h"
+
+namespace polyfloe::scene {
+
+using geometry::Vec2;
+
+// Where a value came from, for error messages: "channel.yaml:12:5" or "--set run.duration".
+struct SourceRef {
+  std::string where;
+};
+
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct TimeSettings {
+  double duration = 300.0;            // simulated time [s], > 0
+  std::optional<double> dt;           // fixed time step [s]; empty = automatic
+  double steps_per_contact = 40.0;    // automatic dt = shortest Hertz contact duration / this [-], >= 5
+  std::optional<double> reference_speed;  // impact speed for the automatic dt and the paper damping [m/s];
+                                          // empty = max(1 m/s, steady free-drift speed)
+};
+
+struct OutputSettings {
+  double interval = 5.0;      // simulated time between frames [s], > 0
+  bool vtk = true;            // VTK .vtp frames + .pvd series
+  bool contacts = true;       // contact series (.vtp + .pvd) alongside the floes
+  bool hdf5 = true;           // results.h5
+};
+
+// A floe (or wall, or plate) listed explicitly.
+struct BodySpec {
+  std::vector<Vec2> polygon;      // vertices in the body's own frame [m]; recentred on their centroid
+  Vec2 position{0.0, 0.0};        // where the centroid goes [m]
+  double yaw = 0.0;               // [rad]
+  Vec2 velocity{0.0, 0.0};        // [m/s]
+  double angular_velocity = 0.0;  // [rad/s]
+  double thickness = 1.0;         // [m]
+  dynamics::Motion motion = dynamics::Motion::dynamic;
+  std::optional<std::uint64_t> id;  // stable id; empty = next free
+  Vec2 external_force{0.0, 0.0};  // constant load at the centroid [N]
+  double external_torque = 0.0;   // constant torque about z [N m]
+  SourceRef source;               // for error messages
+};
+
+// Random convex floes placed in a rectangle at a target concentration, without initial contact.
+struct FloeFieldSpec {
+  Vec2 region_min{0.0, 0.0};   // [m]
+  Vec2 region_max{1000.0, 1000.0};  // [m]
+  double concentration = 0.5;  // ice area / region area [-], (0, 0.7]
+  double size_min = 5.0;       // floe size a: diameter of the area-equivalent circle [m]
+  double size_max = 100.0;     // floe size b [m]
+  double exponent = 2.0;       // power-law exponent alpha of the size pdf f(x) = c x^-alpha (Eq. 15-16) [-]
+  int corners_min = 5;         // corners per floe, drawn uniformly in [min, max]
+  int corners_max = 10;
+  double thickness = 1.0;      // [m]
+  Vec2 velocity{0.0, 0.0};     // initial velocity [m/s]
+  std::uint64_t seed = 1;
+  int max_attempts = 20000;    // random placement tries per floe before giving up [-]
+  SourceRef source;
+};
+
+// A straight-walled funnel and strait downstream (+x) of the ice region, as fixed wall polygons.
+struct ChannelSpec {
+  double basin_x_min = -100.0;   // upstream end of the basin walls [m]
+  double basin_x_max = 1100.0;   // where the funnel starts [m]
+  double basin_y_min = 0.0;      // basin wall lines [m]
+  double basin_y_max = 1000.0;
+  double funnel_length = 300.0;  // along x [m]
+  double opening = 250.0;        // strait width [m]
+  double strait_length = 600.0;  // [m]
+  double wall_thickness = 50.0;  // [m]
+  SourceRef source;
+};
+
+struct Scene {
+  std::string name = "scene";
+  std::string source_path;  // the YAML file
+  std::string source_text;  // its text (stored in the HDF5 output)
+  std::vector<std::string> overrides;  // the --set arguments applied
+  TimeSettings time;
+  OutputSettings output;
+  double ice_density = 920.0;  // [kg/m^3]
+  dynamics::WorldSettings world;  // contact law + drift forcing + broad phase
+  std::vector<BodySpec> bodies;
+  std::optional<FloeFieldSpec> floe_field;
+  std::optional<ChannelSpec> channel;
+};
+
+// Builds the World (explicit bodies, generated walls and floe field). Throws SceneError naming the source of a
+// body that is invalid (non-convex polygon, overlaps, ...).
+dynamics::World build_world(const Scene& scene);
+
+// The reference impact speed the scene uses (its own, or the automatic one) [m/s].
+double reference_speed(const Scene& scene);
+// The time step the scene uses for this world: fixed, or shortest contact duration / steps_per_contact [s].
+double time_step(const Scene& scene, const dynamics::World& world);
+
+}  // namespace polyfloe::scene

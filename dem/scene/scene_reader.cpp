@@ -1,0 +1,804 @@
+// The scene reader is a small schema walker: a MapReader wraps one YAML map, its typed getters read a key (leaving the
+// default in place when it is absent) and record it as known, and finish() reports any key nobody asked for. The
+// schema itself is the sequence of getter calls in read_*() below, one function per block.
+#include "scene/scene_reader.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <utility>
+
+#include "contact/narrow_phase_planar.h"
+#include "geometry/polygon.h"
+#include "scene/channel.h"
+
+namespace polyfloe::scene {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// ---------------------------------------------------------------------------------------------------------------
+// Formatting
+
+// Shortest text that reads back to the same double.
+std::string fmt(double x) {
+  if (std::isnan(x)) return ".nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  std::string t(buf, r.ptr);
+  // 1e+09 -> 1e9, 3.3e-05 -> 3.3e-5
+  if (const std::size_t e = t.find('e'); e != std::string::npos) {
+    std::size_t d = e + 1;
+    if (t[d] == '+') t.erase(d, 1);
+    else if (t[d] == '-') ++d;
+    while (d + 1 < t.size() && t[d] == '0') t.erase(d, 1);
+  }
+  return t;
+}
+
+std::string fmt(const Vec2& v) { return "[" + fmt(v.x()) + ", " + fmt(v.y()) + "]"; }
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+// An allowed interval of a number, with its unit for messages ("s", "m/s", "-").
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = true, hi_open = true;
+  const char* unit = "-";
+  bool contains(double x) const {
+    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+  std::string text() const {
+    return std::string(lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]") + " [" + unit + "]";
+  }
+};
+Range any(const char* unit) { return {-kInf, kInf, true, true, unit}; }
+Range positive(const char* unit) { return {0.0, kInf, true, true, unit}; }
+Range at_least(double lo, const char* unit) { return {lo, kInf, false, true, unit}; }
+Range closed(double lo, double hi, const char* unit) { return {lo, hi, false, false, unit}; }
+
+// ---------------------------------------------------------------------------------------------------------------
+// Where things are
+
+// A value in the tree: its node, the node of its key (for marks of empty values), and its dotted path.
+struct Field {
+  YAML::Node value;
+  YAML::Node key;  // undefined for list items and the root
+  std::string path;
+};
+
+std::string join(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+class Context {
+ public:
+  explicit Context(std::string file) : file_(std::move(file)) {}
+
+  const std::string& file() const { return file_; }
+  void set_origin(const std::string& path, const std::string& override_key) { origin_[path] = override_key; }
+
+  // "--set KEY" when the value (or a block around it) came from an override, else "FILE:LINE:COL".
+  std::string where(const Field& f) const {
+    for (std::string p = f.path;; p = p.substr(0, p.rfind('.'))) {
+      if (auto it = origin_.find(p); it != origin_.end()) return "--set " + it->second;
+      if (p.find('.') == std::string::npos) break;
+    }
+    // An empty value's mark points past it; its key's mark is where the reader looks.
+    const YAML::Node& n = (f.value.IsDefined() && !f.value.IsNull()) || !f.key.IsDefined() ? f.value : f.key;
+    if (!n.IsDefined() || n.Mark().is_null()) return file_;
+    return file_ + ":" + std::to_string(n.Mark().line + 1) + ":" + std::to_string(n.Mark().column + 1);
+  }
+
+  [[noreturn]] void fail(const Field& f, const std::string& message) const {
+    throw SceneError(where(f) + ": key '" + f.path + "': " + message);
+  }
+
+ private:
+  std::string file_;
+  std::map<std::string, std::string> origin_;  // tree path -> the --set key that wrote or created it
+};
+
+// What a node is, for "expected X, got Y".
+std::string describe(const YAML::Node& n) {
+  if (!n.IsDefined() || n.IsNull()) return "nothing";
+  if (n.IsMap()) return "a map";
+  if (n.IsSequence()) return "a list of " + std::to_string(n.size()) + " items";
+  if (n.Tag() == "!") return "the quoted string '" + n.Scalar() + "'";
+  return "'" + n.Scalar() + "'";
+}
+
+bool plain_scalar(const YAML::Node& n) { return n.IsDefined() && n.IsScalar() && n.Tag() != "!"; }
+
+// ---------------------------------------------------------------------------------------------------------------
+// Typed values
+
+bool non_finite_spelling(const std::string& s) {
+  std::string t = s;
+  if (!t.empty() && (t[0] == '+' || t[0] == '-')) t.erase(0, 1);
+  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return t == ".nan" || t == ".inf" || t == "nan" || t == "inf" || t == "infinity";
+}
+
+enum class NumberText { ok, not_a_number, non_finite };
+
+// Reads a plain YAML scalar as a double: decimal or exponent notation, optional sign; .nan/.inf are non-finite.
+NumberText parse_double(const std::string& s, double& x) {
+  if (non_finite_spelling(s)) return NumberText::non_finite;
+  const char* begin = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
+  const char* end = s.data() + s.size();
+  const auto res = std::from_chars(begin, end, x);
+  if (res.ec == std::errc::result_out_of_range) return NumberText::non_finite;
+  if (res.ec != std::errc() || res.ptr != end || begin == end) return NumberText::not_a_number;
+  return std::isfinite(x) ? NumberText::ok : NumberText::non_finite;
+}
+
+double to_number(const Context& ctx, const Field& f, const Range& r, const char* alternative = "") {
+  double x = 0.0;
+  const NumberText t = plain_scalar(f.value) ? parse_double(f.value.Scalar(), x) : NumberText::not_a_number;
+  if (t == NumberText::not_a_number)
+    ctx.fail(f, "expected a number [" + std::string(r.unit) + "]" + alternative + ", got " + describe(f.value));
+  if (t == NumberText::non_finite) ctx.fail(f, f.value.Scalar() + " is not a finite number");
+  if (!r.contains(x)) ctx.fail(f, f.value.Scalar() + " is outside the allowed range " + r.text());
+  return x;
+}
+
+long long to_integer(const Context& ctx, const Field& f, long long lo, long long hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!plain_scalar(f.value)) ctx.fail(f, "expected an integer in " + range + ", got " + describe(f.value));
+  const std::string& s = f.value.Scalar();
+  const char* begin = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
+  const char* end = s.data() + s.size();
+  long long x = 0;
+  const auto res = std::from_chars(begin, end, x);
+  if (res.ec != std::errc() || res.ptr != end || begin == end)
+    ctx.fail(f, "expected an integer in " + range + ", got " + describe(f.value));
+  if (x < lo || x > hi) ctx.fail(f, s + " is outside the allowed range " + range);
+  return x;
+}
+
+std::uint64_t to_unsigned64(const Context& ctx, const Field& f) {
+  const char* what = "expected a non-negative integer in [0, 2^64 - 1], got ";
+  if (!plain_scalar(f.value)) ctx.fail(f, what + describe(f.value));
+  const std::string& s = f.value.Scalar();
+  const char* begin = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
+  const char* end = s.data() + s.size();
+  std::uint64_t x = 0;
+  const auto res = std::from_chars(begin, end, x);
+  if (res.ec != std::errc() || res.ptr != end || begin == end) ctx.fail(f, what + describe(f.value));
+  return x;
+}
+
+bool to_bool(const Context& ctx, const Field& f) {
+  bool b = false;
+  if (!plain_scalar(f.value) || !YAML::convert<bool>::decode(f.value, b))
+    ctx.fail(f, "expected true or false, got " + describe(f.value));
+  return b;
+}
+
+// The items of a list, as Fields named PATH.0, PATH.1, ...
+std::vector<Field> list_items(const Context& ctx, const Field& f, const std::string& what) {
+  if (!f.value.IsSequence()) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
+  std::vector<Field> items;
+  for (std::size_t i = 0; i < f.value.size(); ++i)
+    items.push_back({f.value[i], YAML::Node(), join(f.path, std::to_string(i))});
+  return items;
+}
+
+Vec2 to_vec2(const Context& ctx, const Field& f, const Range& r) {
+  const std::string what = "a list of 2 numbers [x, y] [" + std::string(r.unit) + "]";
+  const std::vector<Field> items = list_items(ctx, f, what);
+  if (items.size() != 2) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
+  return {to_number(ctx, items[0], r), to_number(ctx, items[1], r)};
+}
+
+std::vector<Vec2> to_polygon(const Context& ctx, const Field& f) {
+  const std::string what = "a list of at least 3 points [[x, y], ...] [m]";
+  std::vector<Vec2> v;
+  for (const Field& item : list_items(ctx, f, what)) v.push_back(to_vec2(ctx, item, any("m")));
+  if (v.size() < 3) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
+  if (v.size() > static_cast<std::size_t>(contact::kMaxPolygonVertices))
+    ctx.fail(f, "a polygon may have at most " + std::to_string(contact::kMaxPolygonVertices) + " vertices, got " +
+                    std::to_string(v.size()));
+  if (const std::string err = geometry::convexity_error(v); !err.empty()) ctx.fail(f, err);
+  return v;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The schema walker
+
+class MapReader {
+ public:
+  // `self` must be a map, or absent / empty (then every key keeps its default).
+  MapReader(const Context& ctx, Field self) : ctx_(ctx), self_(std::move(self)) {
+    if (!self_.value.IsDefined() || self_.value.IsNull()) return;
+    if (!self_.value.IsMap())
+      ctx_.fail(self_, "expected a block of keys (a map), got " + describe(self_.value));
+    for (auto it = self_.value.begin(); it != self_.value.end(); ++it) {
+      const YAML::Node key = it->first;
+      if (!key.IsScalar()) ctx_.fail({key, key, self_.path}, "keys must be plain names, got " + describe(key));
+      for (const Entry& e : entries_) {
+        if (e.name == key.Scalar())
+          ctx_.fail({key, key, join(self_.path, e.name)},
+                    "duplicate key (first given at " + ctx_.where({e.key, e.key, join(self_.path, e.name)}) + ")");
+      }
+      entries_.push_back({key.Scalar(), key, it->second, false});
+    }
+  }
+
+  const Field& self() const { return self_; }
+  const Context& context() const { return ctx_; }
+  bool has(const char* key) const {
+    return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.name == key; });
+  }
+
+  // Marks `key` as part of the schema and returns its value if given (a null value counts as given).
+  std::optional<Field> take(const char* key) {
+    if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
+    for (Entry& e : entries_) {
+      if (e.name == key) {
+        e.used = true;
+        return Field{e.value, e.key, join(self_.path, key)};
+      }
+    }
+    return std::nullopt;
+  }
+
+  // Typed getters: `out` keeps its default when the key is absent. They return whether the key was given.
+  bool number(const char* key, double& out, const Range& r) {
+    const auto f = take(key);
+    if (f) out = to_number(ctx_, *f, r);
+    return f.has_value();
+  }
+  // A number, or the word 'auto' (stored as empty).
+  bool number_or_auto(const char* key, std::optional<double>& out, const Range& r) {
+    const auto f = take(key);
+    if (!f) return false;
+    if (plain_scalar(f->value) && f->value.Scalar() == "auto") out.reset();
+    else out = to_number(ctx_, *f, r, " or 'auto'");
+    return true;
+  }
+  bool integer(const char* key, int& out, int lo, int hi) {
+    const auto f = take(key);
+    if (f) out = static_cast<int>(to_integer(ctx_, *f, lo, hi));
+    return f.has_value();
+  }
+  bool unsigned64(const char* key, std::uint64_t& out) {
+    const auto f = take(key);
+    if (f) out = to_unsigned64(ctx_, *f);
+    return f.has_value();
+  }
+  bool optional_unsigned64(const char* key, std::optional<std::uint64_t>& out) {
+    std::uint64_t x = 0;
+    if (!unsigned64(key, x)) return false;
+    out = x;
+    return true;
+  }
+  bool boolean(const char* key, bool& out) {
+    const auto f = take(key);
+    if (f) out = to_bool(ctx_, *f);
+    return f.has_value();
+  }
+  bool text(const char* key, std::string& out) {
+    const auto f = take(key);
+    if (!f) return false;
+    if (!f->value.IsScalar()) ctx_.fail(*f, "expected a text, got " + describe(f->value));
+    out = f->value.Scalar();
+    return true;
+  }
+  bool vec2(const char* key, Vec2& out, const char* unit) {
+    const auto f = take(key);
+    if (f) out = to_vec2(ctx_, *f, any(unit));
+    return f.has_value();
+  }
+  template <class E>
+  bool choice(const char* key, E& out, std::initializer_list<std::pair<const char*, E>> options) {
+    const auto f = take(key);
+    if (!f) return false;
+    std::string names;
+    for (const auto& [name, value] : options) {
+      if (plain_scalar(f->value) && f->value.Scalar() == name) {
+        out = value;
+        return true;
+      }
+      names += (names.empty() ? "" : ", ") + std::string(name);
+    }
+    ctx_.fail(*f, "expected one of " + names + ", got " + describe(f->value));
+  }
+  // A nested block (an empty reader when absent: its keys keep their defaults).
+  MapReader block(const char* key) {
+    const auto f = take(key);
+    return MapReader(ctx_, f ? *f : Field{YAML::Node(), YAML::Node(), join(self_.path, key)});
+  }
+  // A block that may be left out; absent or null ('key: null', '--set key=~') means none.
+  std::optional<MapReader> optional_block(const char* key) {
+    const auto f = take(key);
+    if (!f || f->value.IsNull()) return std::nullopt;
+    return MapReader(ctx_, *f);
+  }
+
+  // Every key given must have been asked for.
+  void finish() const {
+    for (const Entry& e : entries_) {
+      if (e.used || std::find(known_.begin(), known_.end(), e.name) != known_.end()) continue;
+      std::string allowed;
+      for (const std::string& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
+      const std::string in = self_.path.empty() ? "at the top level" : "in '" + self_.path + "'";
+      const Field f{e.key, e.key, join(self_.path, e.name)};
+      throw SceneError(ctx_.where(f) + ": unknown key '" + f.path + "'; allowed " + in + ": " + allowed);
+    }
+  }
+
+ private:
+  struct Entry {
+    std::string name;
+    YAML::Node key, value;
+    bool used = false;
+  };
+  const Context& ctx_;
+  Field self_;
+  std::vector<Entry> entries_;
+  std::vector<std::string> known_;
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// The schema, one block per function
+
+void read_run(MapReader m, TimeSettings& t) {
+  m.number("duration", t.duration, positive("s"));
+  m.number_or_auto("dt", t.dt, positive("s"));
+  m.number("steps_per_contact", t.steps_per_contact, at_least(5.0, "-"));
+  m.number_or_auto("reference_speed", t.reference_speed, positive("m/s"));
+  m.finish();
+}
+
+void read_output(MapReader m, OutputSettings& o) {
+  m.number("interval", o.interval, positive("s"));
+  m.boolean("vtk", o.vtk);
+  m.boolean("contacts", o.contacts);
+  m.boolean("hdf5", o.hdf5);
+  m.finish();
+}
+
+void read_ice(MapReader m, Scene& s) {
+  m.number("density", s.ice_density, positive("kg/m^3"));
+  m.number("youngs_modulus", s.world.contact.youngs_modulus, positive("Pa"));
+  m.number("poisson_ratio", s.world.contact.poisson_ratio, Range{0.0, 0.5, false, true, "-"});
+  m.finish();
+}
+
+void read_contact(MapReader m, dynamics::WorldSettings& w) {
+  m.number("restitution", w.contact.restitution, Range{0.0, 1.0, true, false, "-"});
+  m.number("friction", w.contact.friction, closed(0.0, 10.0, "-"));
+  m.choice("damping_model", w.contact.damping,
+           {{"speed_independent", contact::DampingModel::speed_independent},
+            {"paper", contact::DampingModel::paper}});
+  std::optional<double> cell;
+  if (w.broad_phase_cell > 0.0) cell = w.broad_phase_cell;
+  m.number_or_auto("broad_phase_cell", cell, positive("m"));
+  w.broad_phase_cell = cell.value_or(0.0);
+  m.finish();
+}
+
+void read_drag(MapReader m, bool& enabled, double& coefficient) {
+  m.boolean("enabled", enabled);
+  m.number("coefficient", coefficient, closed(0.0, 1.0, "-"));
+  m.finish();
+}
+
+void read_forcing(MapReader m, forcing::DriftSettings& d) {
+  MapReader ocean = m.block("ocean");
+  ocean.number("density", d.water_density, positive("kg/m^3"));
+  ocean.vec2("current", d.current, "m/s");
+  read_drag(ocean.block("skin_drag"), d.skin_drag, d.skin_drag_coefficient);
+  ocean.finish();
+  MapReader air = m.block("air");
+  air.number("density", d.air_density, positive("kg/m^3"));
+  air.vec2("wind", d.wind, "m/s");
+  read_drag(air.block("drag"), d.air_drag, d.air_drag_coefficient);
+  air.finish();
+  m.finish();
+}
+
+// One explicit body: exactly one of polygon / regular / rectangle.
+BodySpec read_body(MapReader m) {
+  const Context& ctx = m.context();
+  BodySpec b;
+  b.source.where = ctx.where(m.self());
+  const int shapes = int(m.has("polygon")) + int(m.has("regular")) + int(m.has("rectangle"));
+  if (shapes != 1)
+    ctx.fail(m.self(), shapes == 0 ? "missing the shape: give one of 'polygon', 'regular' or 'rectangle'"
+                                   : "give only one of 'polygon', 'regular' or 'rectangle'");
+  if (auto f = m.take("polygon")) b.polygon = to_polygon(ctx, *f);
+  {
+    MapReader r = m.block("regular");
+    if (m.has("regular")) {
+      const auto fs = r.take("sides");
+      const auto fr = r.take("radius");
+      if (!fs || !fr) ctx.fail(r.self(), std::string("missing required key '") + (fs ? "radius" : "sides") + "'");
+      const int sides = static_cast<int>(to_integer(ctx, *fs, 3, contact::kMaxPolygonVertices));
+      const double radius = to_number(ctx, *fr, positive("m"));  // circumradius [m]
+      for (int i = 0; i < sides; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / sides;
+        b.polygon.emplace_back(radius * std::cos(a), radius * std::sin(a));
+      }
+    }
+    r.finish();
+  }
+  {
+    MapReader r = m.block("rectangle");
+    if (m.has("rectangle")) {
+      const auto fw = r.take("width");
+      const auto fh = r.take("height");
+      if (!fw || !fh) ctx.fail(r.self(), std::string("missing required key '") + (fw ? "height" : "width") + "'");
+      const double hx = 0.5 * to_number(ctx, *fw, positive("m")), hy = 0.5 * to_number(ctx, *fh, positive("m"));
+      b.polygon = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
+    }
+    r.finish();
+  }
+  m.vec2("position", b.position, "m");
+  if (m.has("yaw") && m.has("yaw_deg")) ctx.fail(m.self(), "give only one of 'yaw' [rad] and 'yaw_deg' [deg]");
+  m.number("yaw", b.yaw, any("rad"));
+  double yaw_deg = 0.0;
+  if (m.number("yaw_deg", yaw_deg, any("deg"))) b.yaw = yaw_deg * std::numbers::pi / 180.0;
+  m.vec2("velocity", b.velocity, "m/s");
+  m.number("angular_velocity", b.angular_velocity, any("rad/s"));
+  m.number("thickness", b.thickness, positive("m"));
+  m.choice("motion", b.motion,
+           {{"dynamic", dynamics::Motion::dynamic},
+            {"fixed", dynamics::Motion::fixed},
+            {"kinematic", dynamics::Motion::kinematic}});
+  m.optional_unsigned64("id", b.id);
+  m.vec2("external_force", b.external_force, "N");
+  m.number("external_torque", b.external_torque, any("N m"));
+  m.finish();
+  return b;
+}
+
+void read_floes(const Context& ctx, const Field& f, std::vector<BodySpec>& bodies) {
+  if (!f.value.IsDefined() || f.value.IsNull()) return;
+  std::vector<Field> id_fields;
+  for (const Field& item : list_items(ctx, f, "a list of floes (each a block of keys)")) {
+    bodies.push_back(read_body(MapReader(ctx, item)));
+    if (bodies.back().id) {
+      for (std::size_t j = 0; j < bodies.size() - 1; ++j) {
+        if (bodies[j].id == bodies.back().id)
+          ctx.fail({static_cast<const YAML::Node&>(item.value)["id"], YAML::Node(), join(item.path, "id")},
+                   "id " + std::to_string(*bodies.back().id) + " is already used by " + f.path + "." +
+                       std::to_string(j) + " (" + bodies[j].source.where + ")");
+      }
+    }
+  }
+}
+
+FloeFieldSpec read_floe_field(MapReader m) {
+  const Context& ctx = m.context();
+  FloeFieldSpec s;
+  s.source.where = ctx.where(m.self());
+  if (auto f = m.take("region")) {
+    const std::string what = "a list of 4 numbers [xmin, ymin, xmax, ymax] [m]";
+    const std::vector<Field> items = list_items(ctx, *f, what);
+    if (items.size() != 4) ctx.fail(*f, "expected " + what + ", got " + describe(f->value));
+    double r[4];
+    for (int i = 0; i < 4; ++i) r[i] = to_number(ctx, items[static_cast<std::size_t>(i)], any("m"));
+    if (!(r[2] > r[0])) ctx.fail(items[2], "xmax = " + fmt(r[2]) + " must be > xmin = " + fmt(r[0]) + " [m]");
+    if (!(r[3] > r[1])) ctx.fail(items[3], "ymax = " + fmt(r[3]) + " must be > ymin = " + fmt(r[1]) + " [m]");
+    s.region_min = {r[0], r[1]};
+    s.region_max = {r[2], r[3]};
+  }
+  m.number("concentration", s.concentration, Range{0.0, 0.7, true, false, "-"});
+  {
+    MapReader size = m.block("size");
+    size.number("min", s.size_min, positive("m"));
+    size.number("max", s.size_max, positive("m"));
+    size.number("exponent", s.exponent, closed(0.0, 10.0, "-"));
+    if (s.size_max < s.size_min) {
+      const auto f = size.take("max");
+      ctx.fail(f ? *f : *size.take("min"),
+               "size.max = " + fmt(s.size_max) + " m must be >= size.min = " + fmt(s.size_min) + " m");
+    }
+    size.finish();
+  }
+  if (auto f = m.take("corners")) {
+    const int hi = contact::kMaxPolygonVertices;
+    if (f->value.IsSequence()) {
+      const std::vector<Field> items = list_items(ctx, *f, "[min, max]");
+      if (items.size() != 2) ctx.fail(*f, "expected a list [min, max] of corner counts, got " + describe(f->value));
+      s.corners_min = static_cast<int>(to_integer(ctx, items[0], 3, hi));
+      s.corners_max = static_cast<int>(to_integer(ctx, items[1], 3, hi));
+      if (s.corners_max < s.corners_min)
+        ctx.fail(items[1], "max = " + std::to_string(s.corners_max) + " must be >= min = " +
+                               std::to_string(s.corners_min));
+    } else {
+      s.corners_min = s.corners_max = static_cast<int>(to_integer(ctx, *f, 3, hi));
+    }
+  }
+  m.number("thickness", s.thickness, positive("m"));
+  m.vec2("velocity", s.velocity, "m/s");
+  m.unsigned64("seed", s.seed);
+  m.integer("max_attempts", s.max_attempts, 1, 1000000000);
+  m.finish();
+  return s;
+}
+
+ChannelSpec read_channel(MapReader m) {
+  const Context& ctx = m.context();
+  ChannelSpec c;
+  c.source.where = ctx.where(m.self());
+  m.number("basin_x_min", c.basin_x_min, any("m"));
+  m.number("basin_x_max", c.basin_x_max, any("m"));
+  m.number("basin_y_min", c.basin_y_min, any("m"));
+  m.number("basin_y_max", c.basin_y_max, any("m"));
+  m.number("funnel_length", c.funnel_length, positive("m"));
+  m.number("opening", c.opening, positive("m"));
+  m.number("strait_length", c.strait_length, positive("m"));
+  m.number("wall_thickness", c.wall_thickness, positive("m"));
+  m.finish();
+  if (const std::optional<SpecIssue> issue = channel_issue(c)) {
+    const auto f = m.take(issue->key.c_str());
+    ctx.fail(f ? *f : Field{m.self().value, m.self().key, join(m.self().path, issue->key)}, issue->message);
+  }
+  return c;
+}
+
+void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
+  MapReader top(ctx, {root, YAML::Node(), ""});
+  top.text("name", s.name);
+  read_run(top.block("run"), s.time);
+  read_output(top.block("output"), s.output);
+  read_ice(top.block("ice"), s);
+  read_contact(top.block("contact"), s.world);
+  read_forcing(top.block("forcing"), s.world.drift);
+  if (auto f = top.take("floes")) read_floes(ctx, *f, s.bodies);
+  if (auto m = top.optional_block("floe_field")) s.floe_field = read_floe_field(*m);
+  if (auto m = top.optional_block("channel")) s.channel = read_channel(*m);
+  top.finish();
+
+  const bool dynamic_body = std::any_of(s.bodies.begin(), s.bodies.end(),
+                                        [](const BodySpec& b) { return b.motion == dynamics::Motion::dynamic; });
+  if (!dynamic_body && !s.floe_field) {
+    throw SceneError(ctx.file() + ":1:1: the scene has no dynamic body: list floes under 'floes' (motion: dynamic) "
+                                  "or generate them with 'floe_field'");
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Overrides
+
+bool is_index(const std::string& s) {
+  return !s.empty() && s.size() < 10 && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+// Sets the value at keys[i..] below `node` (whose path is `path`), creating missing blocks.
+void set_path(Context& ctx, YAML::Node node, const std::vector<std::string>& keys, std::size_t i,
+              const std::string& path, const YAML::Node& value, const std::string& key) {
+  const std::string& k = keys[i];
+  const std::string child_path = join(path, k);
+  const bool last = i + 1 == keys.size();
+  const std::string where = "--set " + key + ": ";
+  if (node.IsSequence()) {
+    if (!is_index(k) || std::stoul(k) >= node.size())
+      throw SceneError(where + "'" + path + "' is a list of " + std::to_string(node.size()) + " items; '" + k +
+                       "' is not one of its indices 0.." + std::to_string(node.size()) + "-1");
+    const std::size_t idx = std::stoul(k);
+    if (last) {
+      node[idx] = value;
+      ctx.set_origin(child_path, key);
+      return;
+    }
+    YAML::Node child = node[idx];
+    set_path(ctx, child, keys, i + 1, child_path, value, key);
+    return;
+  }
+  if (!node.IsMap())
+    throw SceneError(where + "'" + path + "' is a single value, not a block of keys, so '" + child_path +
+                     "' cannot be set");
+  if (last) {
+    node[k] = value;
+    ctx.set_origin(child_path, key);
+    return;
+  }
+  YAML::Node child;
+  for (auto it = node.begin(); it != node.end(); ++it)
+    if (it->first.IsScalar() && it->first.Scalar() == k) child.reset(it->second);
+  if (!child.IsDefined() || child.IsNull()) {
+    if (is_index(keys[i + 1]))
+      throw SceneError(where + "there is no list '" + child_path + "' to take item " + keys[i + 1] + " from");
+    node[k] = YAML::Node(YAML::NodeType::Map);
+    child.reset(node[k]);
+    ctx.set_origin(child_path, key);
+  }
+  set_path(ctx, child, keys, i + 1, child_path, value, key);
+}
+
+void apply_override(Context& ctx, YAML::Node& root, const std::string& arg) {
+  const std::size_t eq = arg.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError("--set '" + arg + "': expected key.path=value (for example --set run.duration=60)");
+  const std::string key = arg.substr(0, eq);
+  const std::string text = arg.substr(eq + 1);
+  std::vector<std::string> keys;
+  for (std::size_t start = 0;;) {
+    const std::size_t dot = key.find('.', start);
+    keys.push_back(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+    if (keys.back().empty()) throw SceneError("--set " + key + ": empty name in the key path");
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  YAML::Node value;
+  try {
+    value = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError("--set " + key + ": cannot read the value '" + text + "' as YAML: " + e.msg);
+  }
+  if (!root.IsMap()) root.reset(YAML::Node(YAML::NodeType::Map));
+  set_path(ctx, root, keys, 0, "", value, key);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------------
+
+Scene parse_scene(const std::string& text, const std::string& display_name, const std::vector<std::string>& overrides) {
+  Context ctx(display_name);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw SceneError(display_name + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
+                     ": YAML syntax error: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw SceneError(display_name + ": cannot read YAML: " + e.msg);
+  }
+  if (root.IsDefined() && !root.IsNull() && !root.IsMap())
+    throw SceneError(ctx.where({root, YAML::Node(), ""}) + ": a scene is a block of keys (name, run, ...), got " +
+                     describe(root));
+  for (const std::string& o : overrides) apply_override(ctx, root, o);
+
+  Scene s;
+  s.name = std::filesystem::path(display_name).stem().string();
+  if (s.name.empty()) s.name = "scene";
+  s.source_path = display_name;
+  s.source_text = text;
+  s.overrides = overrides;
+  try {
+    read_scene_tree(ctx, root, s);
+  } catch (const YAML::Exception& e) {  // should not happen: every access above is checked
+    throw SceneError(display_name + ": " + e.what());
+  }
+  return s;
+}
+
+Scene read_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw SceneError(name + ": cannot read the scene file: it is a directory");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(name + ": cannot read the scene file: " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(name + ": cannot read the scene file: " + std::strerror(errno));
+  return parse_scene(text.str(), name, overrides);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+
+std::string resolved_yaml(const Scene& s) {
+  std::ostringstream o;
+  auto opt = [](const std::optional<double>& x) { return x ? fmt(*x) : std::string("auto"); };
+  auto on = [](bool b) { return b ? "true" : "false"; };
+  o << "# Scene '" << s.name << "', every setting resolved (units in the comments).\n";
+  if (!s.source_path.empty()) o << "# from: " << s.source_path << "\n";
+  for (const std::string& ov : s.overrides) o << "# --set " << ov << "\n";
+  o << "name: " << quoted(s.name) << "\n";
+  o << "run:\n"
+    << "  duration: " << fmt(s.time.duration) << "  # [s] simulated time\n"
+    << "  dt: " << opt(s.time.dt) << "  # [s] time step; auto = shortest contact duration / steps_per_contact\n"
+    << "  steps_per_contact: " << fmt(s.time.steps_per_contact) << "  # [-]\n"
+    << "  reference_speed: " << opt(s.time.reference_speed)
+    << "  # [m/s] impact speed; auto = max(1 m/s, free-drift speed)\n";
+  o << "output:\n"
+    << "  interval: " << fmt(s.output.interval) << "  # [s] simulated time between frames\n"
+    << "  vtk: " << on(s.output.vtk) << "\n"
+    << "  contacts: " << on(s.output.contacts) << "\n"
+    << "  hdf5: " << on(s.output.hdf5) << "\n";
+  const contact::ContactLawSettings& c = s.world.contact;
+  o << "ice:\n"
+    << "  density: " << fmt(s.ice_density) << "  # [kg/m^3]\n"
+    << "  youngs_modulus: " << fmt(c.youngs_modulus) << "  # [Pa]\n"
+    << "  poisson_ratio: " << fmt(c.poisson_ratio) << "  # [-]\n";
+  o << "contact:\n"
+    << "  restitution: " << fmt(c.restitution) << "  # [-]\n"
+    << "  friction: " << fmt(c.friction) << "  # [-] Coulomb coefficient\n"
+    << "  damping_model: "
+    << (c.damping == contact::DampingModel::paper ? "paper" : "speed_independent") << "\n"
+    << "  broad_phase_cell: "
+    << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n";
+  const forcing::DriftSettings& d = s.world.drift;
+  o << "forcing:\n"
+    << "  ocean:\n"
+    << "    density: " << fmt(d.water_density) << "  # [kg/m^3]\n"
+    << "    current: " << fmt(d.current) << "  # [m/s]\n"
+    << "    skin_drag: {enabled: " << on(d.skin_drag) << ", coefficient: " << fmt(d.skin_drag_coefficient)
+    << "}  # c_w [-]\n"
+    << "  air:\n"
+    << "    density: " << fmt(d.air_density) << "  # [kg/m^3]\n"
+    << "    wind: " << fmt(d.wind) << "  # [m/s]\n"
+    << "    drag: {enabled: " << on(d.air_drag) << ", coefficient: " << fmt(d.air_drag_coefficient)
+    << "}  # c_a [-]\n";
+  if (s.bodies.empty()) o << "floes: []\n";
+  else o << "floes:\n";
+  for (const BodySpec& b : s.bodies) {
+    o << "  - polygon: [";
+    for (std::size_t i = 0; i < b.polygon.size(); ++i) o << (i ? ", " : "") << fmt(b.polygon[i]);
+    o << "]  # [m] body frame" << (b.source.where.empty() ? "" : ", from " + b.source.where) << "\n"
+      << "    position: " << fmt(b.position) << "  # [m] centroid\n"
+      << "    yaw: " << fmt(b.yaw) << "  # [rad]\n"
+      << "    velocity: " << fmt(b.velocity) << "  # [m/s]\n"
+      << "    angular_velocity: " << fmt(b.angular_velocity) << "  # [rad/s]\n"
+      << "    thickness: " << fmt(b.thickness) << "  # [m]\n"
+      << "    motion: " << dynamics::to_string(b.motion) << "\n";
+    if (b.id) o << "    id: " << *b.id << "\n";
+    o << "    external_force: " << fmt(b.external_force) << "  # [N]\n"
+      << "    external_torque: " << fmt(b.external_torque) << "  # [N m]\n";
+  }
+  if (const auto& f = s.floe_field) {
+    o << "floe_field:\n"
+      << "  region: [" << fmt(f->region_min.x()) << ", " << fmt(f->region_min.y()) << ", " << fmt(f->region_max.x())
+      << ", " << fmt(f->region_max.y()) << "]  # [m] xmin, ymin, xmax, ymax\n"
+      << "  concentration: " << fmt(f->concentration) << "  # [-] ice area / region area\n"
+      << "  size: {min: " << fmt(f->size_min) << ", max: " << fmt(f->size_max) << ", exponent: " << fmt(f->exponent)
+      << "}  # [m], [m], [-]; size = diameter of the area-equivalent circle\n"
+      << "  corners: [" << f->corners_min << ", " << f->corners_max << "]  # [-]\n"
+      << "  thickness: " << fmt(f->thickness) << "  # [m]\n"
+      << "  velocity: " << fmt(f->velocity) << "  # [m/s]\n"
+      << "  seed: " << f->seed << "\n"
+      << "  max_attempts: " << f->max_attempts << "  # [-] placement tries per floe\n";
+  }
+  if (const auto& ch = s.channel) {
+    o << "channel:\n"
+      << "  basin_x_min: " << fmt(ch->basin_x_min) << "  # [m]\n"
+      << "  basin_x_max: " << fmt(ch->basin_x_max) << "  # [m]\n"
+      << "  basin_y_min: " << fmt(ch->basin_y_min) << "  # [m]\n"
+      << "  basin_y_max: " << fmt(ch->basin_y_max) << "  # [m]\n"
+      << "  funnel_length: " << fmt(ch->funnel_length) << "  # [m]\n"
+      << "  opening: " << fmt(ch->opening) << "  # [m]\n"
+      << "  strait_length: " << fmt(ch->strait_length) << "  # [m]\n"
+      << "  wall_thickness: " << fmt(ch->wall_thickness) << "  # [m]\n";
+  }
+  return o.str();
+}
+
+}  // namespace polyfloe::scene

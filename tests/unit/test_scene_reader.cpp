@@ -1,0 +1,588 @@
+// Scene reader: defaults, the example scenes, every kind of error with its location, --set overrides, and the
+// resolved YAML round trip.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "forcing/drift.h"
+#include "scene/floe_field.h"
+#include "scene/scene_reader.h"
+
+namespace polyfloe::scene {
+namespace {
+
+const std::string kSceneDir = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/";
+
+// The smallest valid scene: one floe, everything else default.
+const char* kOneFloe =
+    "floes:\n"
+    "  - regular: {sides: 6, radius: 5}\n";
+
+// The message of the SceneError that `f` throws ("" if none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string parse_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  return error_of([&] { parse_scene(text, "t.yaml", overrides); });
+}
+
+bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// Every setting of two scenes, compared field by field.
+void expect_same_settings(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.time.duration, b.time.duration);
+  EXPECT_EQ(a.time.dt, b.time.dt);
+  EXPECT_EQ(a.time.steps_per_contact, b.time.steps_per_contact);
+  EXPECT_EQ(a.time.reference_speed, b.time.reference_speed);
+  EXPECT_EQ(a.output.interval, b.output.interval);
+  EXPECT_EQ(a.output.vtk, b.output.vtk);
+  EXPECT_EQ(a.output.contacts, b.output.contacts);
+  EXPECT_EQ(a.output.hdf5, b.output.hdf5);
+  EXPECT_EQ(a.ice_density, b.ice_density);
+  const auto &ca = a.world.contact, &cb = b.world.contact;
+  EXPECT_EQ(ca.youngs_modulus, cb.youngs_modulus);
+  EXPECT_EQ(ca.poisson_ratio, cb.poisson_ratio);
+  EXPECT_EQ(ca.restitution, cb.restitution);
+  EXPECT_EQ(ca.friction, cb.friction);
+  EXPECT_EQ(ca.damping, cb.damping);
+  EXPECT_EQ(a.world.broad_phase_cell, b.world.broad_phase_cell);
+  const auto &da = a.world.drift, &db = b.world.drift;
+  EXPECT_EQ(da.water_density, db.water_density);
+  EXPECT_EQ(da.current, db.current);
+  EXPECT_EQ(da.skin_drag, db.skin_drag);
+  EXPECT_EQ(da.skin_drag_coefficient, db.skin_drag_coefficient);
+  EXPECT_EQ(da.air_density, db.air_density);
+  EXPECT_EQ(da.wind, db.wind);
+  EXPECT_EQ(da.air_drag, db.air_drag);
+  EXPECT_EQ(da.air_drag_coefficient, db.air_drag_coefficient);
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    const BodySpec &x = a.bodies[i], &y = b.bodies[i];
+    EXPECT_EQ(x.polygon, y.polygon) << i;
+    EXPECT_EQ(x.position, y.position) << i;
+    EXPECT_EQ(x.yaw, y.yaw) << i;
+    EXPECT_EQ(x.velocity, y.velocity) << i;
+    EXPECT_EQ(x.angular_velocity, y.angular_velocity) << i;
+    EXPECT_EQ(x.thickness, y.thickness) << i;
+    EXPECT_EQ(x.motion, y.motion) << i;
+    EXPECT_EQ(x.id, y.id) << i;
+    EXPECT_EQ(x.external_force, y.external_force) << i;
+    EXPECT_EQ(x.external_torque, y.external_torque) << i;
+  }
+  ASSERT_EQ(a.floe_field.has_value(), b.floe_field.has_value());
+  if (a.floe_field) {
+    const FloeFieldSpec &x = *a.floe_field, &y = *b.floe_field;
+    EXPECT_EQ(x.region_min, y.region_min);
+    EXPECT_EQ(x.region_max, y.region_max);
+    EXPECT_EQ(x.concentration, y.concentration);
+    EXPECT_EQ(x.size_min, y.size_min);
+    EXPECT_EQ(x.size_max, y.size_max);
+    EXPECT_EQ(x.exponent, y.exponent);
+    EXPECT_EQ(x.corners_min, y.corners_min);
+    EXPECT_EQ(x.corners_max, y.corners_max);
+    EXPECT_EQ(x.thickness, y.thickness);
+    EXPECT_EQ(x.velocity, y.velocity);
+    EXPECT_EQ(x.seed, y.seed);
+    EXPECT_EQ(x.max_attempts, y.max_attempts);
+  }
+  ASSERT_EQ(a.channel.has_value(), b.channel.has_value());
+  if (a.channel) {
+    const ChannelSpec &x = *a.channel, &y = *b.channel;
+    EXPECT_EQ(x.basin_x_min, y.basin_x_min);
+    EXPECT_EQ(x.basin_x_max, y.basin_x_max);
+    EXPECT_EQ(x.basin_y_min, y.basin_y_min);
+    EXPECT_EQ(x.basin_y_max, y.basin_y_max);
+    EXPECT_EQ(x.funnel_length, y.funnel_length);
+    EXPECT_EQ(x.opening, y.opening);
+    EXPECT_EQ(x.strait_length, y.strait_length);
+    EXPECT_EQ(x.wall_thickness, y.wall_thickness);
+  }
+}
+
+void expect_round_trip(const Scene& s) {
+  const std::string text = resolved_yaml(s);
+  SCOPED_TRACE(text);
+  const Scene back = parse_scene(text, "resolved.yaml", {});
+  expect_same_settings(s, back);
+}
+
+// --- defaults and example scenes ---
+
+TEST(SceneReader, DefaultsFillEverythingNotGiven) {
+  const Scene s = parse_scene(kOneFloe, "dir/my_scene.yaml", {});
+  const Scene d;  // the defaults of scene.h
+  EXPECT_EQ(s.name, "my_scene");  // the file's stem
+  EXPECT_EQ(s.source_path, "dir/my_scene.yaml");
+  EXPECT_EQ(s.source_text, kOneFloe);
+  EXPECT_FALSE(s.time.dt.has_value());
+  EXPECT_FALSE(s.time.reference_speed.has_value());
+  EXPECT_EQ(s.world.broad_phase_cell, 0.0);
+  EXPECT_FALSE(s.floe_field.has_value());
+  EXPECT_FALSE(s.channel.has_value());
+  ASSERT_EQ(s.bodies.size(), 1u);
+  const BodySpec& b = s.bodies[0];
+  EXPECT_EQ(b.polygon.size(), 6u);
+  EXPECT_NEAR(b.polygon[0].x(), 5.0, 1e-15);
+  EXPECT_EQ(b.motion, dynamics::Motion::dynamic);
+  EXPECT_EQ(b.thickness, 1.0);
+  EXPECT_FALSE(b.id.has_value());
+  EXPECT_EQ(b.source.where, "dir/my_scene.yaml:2:5");
+  Scene expected = d;
+  expected.name = "my_scene";
+  expected.bodies = s.bodies;
+  expect_same_settings(s, expected);
+}
+
+TEST(SceneReader, ChannelSceneParses) {
+  const Scene s = read_scene(kSceneDir + "channel.yaml", {});
+  EXPECT_EQ(s.name, "channel");
+  EXPECT_EQ(s.time.duration, 300.0);
+  EXPECT_FALSE(s.time.dt.has_value());
+  EXPECT_EQ(s.output.interval, 5.0);
+  EXPECT_EQ(s.ice_density, 920.0);
+  EXPECT_EQ(s.world.contact.youngs_modulus, 1.0e9);
+  EXPECT_EQ(s.world.contact.poisson_ratio, 0.3);
+  EXPECT_EQ(s.world.contact.restitution, 0.5);
+  EXPECT_EQ(s.world.contact.friction, 0.3);
+  EXPECT_EQ(s.world.drift.current, Vec2(4.0, 0.0));
+  EXPECT_EQ(s.world.drift.wind, Vec2(20.0, 0.0));
+  EXPECT_EQ(s.world.drift.water_density, 1025.0);
+  EXPECT_EQ(s.world.drift.air_density, 1.2);
+  EXPECT_EQ(s.world.drift.skin_drag_coefficient, 0.0055);
+  EXPECT_EQ(s.world.drift.air_drag_coefficient, 0.0012);
+  ASSERT_TRUE(s.floe_field.has_value());
+  EXPECT_EQ(s.floe_field->concentration, 0.5);
+  EXPECT_EQ(s.floe_field->region_max, Vec2(1000.0, 1000.0));
+  EXPECT_EQ(s.floe_field->size_min, 5.0);
+  EXPECT_EQ(s.floe_field->size_max, 100.0);
+  EXPECT_EQ(s.floe_field->exponent, 2.0);
+  EXPECT_EQ(s.floe_field->corners_min, 5);
+  EXPECT_EQ(s.floe_field->corners_max, 10);
+  EXPECT_EQ(s.floe_field->seed, 1u);
+  ASSERT_TRUE(s.channel.has_value());
+  EXPECT_EQ(s.channel->opening, 250.0);
+  EXPECT_EQ(s.channel->basin_x_min, -100.0);
+  EXPECT_EQ(s.channel->basin_x_max, 1100.0);
+  EXPECT_EQ(s.channel->funnel_length, 300.0);
+  EXPECT_EQ(s.channel->strait_length, 600.0);
+  EXPECT_EQ(s.channel->wall_thickness, 50.0);
+  EXPECT_TRUE(s.bodies.empty());
+  EXPECT_TRUE(starts_with(s.floe_field->source.where, kSceneDir + "channel.yaml:"));
+}
+
+TEST(SceneReader, TwoFloesSceneParses) {
+  const Scene s = read_scene(kSceneDir + "two_floes.yaml", {});
+  ASSERT_EQ(s.bodies.size(), 2u);
+  EXPECT_EQ(s.bodies[0].velocity, Vec2(1.0, 0.0));
+  EXPECT_EQ(s.bodies[1].velocity, Vec2(-1.0, 0.0));
+  EXPECT_EQ(s.bodies[0].polygon.size(), 4u);
+  EXPECT_FALSE(s.world.drift.skin_drag);
+  EXPECT_FALSE(s.world.drift.air_drag);
+  EXPECT_EQ(s.time.reference_speed, 2.0);
+}
+
+TEST(SceneReader, ExplicitBodyKeys) {
+  const Scene s = parse_scene(
+      "floes:\n"
+      "  - rectangle: {width: 20, height: 2}\n"
+      "    position: [1, 2]\n"
+      "    yaw_deg: 90\n"
+      "    velocity: [0.5, -0.5]\n"
+      "    angular_velocity: 0.1\n"
+      "    thickness: 2\n"
+      "    motion: kinematic\n"
+      "    id: 7\n"
+      "    external_force: [10, 0]\n"
+      "    external_torque: -3\n"
+      "  - polygon: [[0, 0], [4, 0], [0, 3]]\n"
+      "    yaw: 0.25\n",
+      "b.yaml", {});
+  ASSERT_EQ(s.bodies.size(), 2u);
+  const BodySpec& r = s.bodies[0];
+  EXPECT_EQ(r.polygon, (std::vector<Vec2>{{-10, -1}, {10, -1}, {10, 1}, {-10, 1}}));
+  EXPECT_EQ(r.position, Vec2(1, 2));
+  EXPECT_DOUBLE_EQ(r.yaw, std::numbers::pi / 2);
+  EXPECT_EQ(r.angular_velocity, 0.1);
+  EXPECT_EQ(r.thickness, 2.0);
+  EXPECT_EQ(r.motion, dynamics::Motion::kinematic);
+  EXPECT_EQ(r.id, 7u);
+  EXPECT_EQ(r.external_force, Vec2(10, 0));
+  EXPECT_EQ(r.external_torque, -3.0);
+  EXPECT_EQ(s.bodies[1].yaw, 0.25);
+  EXPECT_EQ(s.bodies[1].source.where, "b.yaml:12:5");
+}
+
+TEST(SceneReader, AutoAndNumbers) {
+  const Scene s = parse_scene(std::string(kOneFloe) +
+                                  "run: {dt: 1.0e-4, reference_speed: +2.5, steps_per_contact: 50}\n"
+                                  "contact: {broad_phase_cell: 30, damping_model: paper}\n",
+                              "t.yaml", {});
+  EXPECT_EQ(s.time.dt, 1.0e-4);
+  EXPECT_EQ(s.time.reference_speed, 2.5);
+  EXPECT_EQ(s.time.steps_per_contact, 50.0);
+  EXPECT_EQ(s.world.broad_phase_cell, 30.0);
+  EXPECT_EQ(s.world.contact.damping, contact::DampingModel::paper);
+  const Scene a = parse_scene(std::string(kOneFloe) + "run: {dt: auto}\ncontact: {broad_phase_cell: auto}\n",
+                              "t.yaml", {});
+  EXPECT_FALSE(a.time.dt.has_value());
+  EXPECT_EQ(a.world.broad_phase_cell, 0.0);
+}
+
+// --- errors, each with where and which key ---
+
+TEST(SceneErrors, UnknownKeyNamesLineAndAllowedKeys) {
+  const std::string m = parse_error(std::string(kOneFloe) +
+                                    "contact:\n"
+                                    "  restitution: 0.5\n"
+                                    "  restitutoin: 0.4\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:5:3: unknown key 'contact.restitutoin'; allowed in 'contact': restitution, "
+                             "friction, damping_model, broad_phase_cell"))
+      << m;
+  const std::string top = parse_error(std::string(kOneFloe) + "flooes: []\n");
+  EXPECT_TRUE(starts_with(top, "t.yaml:3:1: unknown key 'flooes'; allowed at the top level: name, run, ")) << top;
+  const std::string nested = parse_error("floes:\n  - regular: {sides: 6, radius: 5, angle: 3}\n");
+  EXPECT_TRUE(starts_with(nested, "t.yaml:2:36: unknown key 'floes.0.regular.angle'; allowed in 'floes.0.regular': "
+                                  "sides, radius"))
+      << nested;
+}
+
+TEST(SceneErrors, WrongType) {
+  std::string m = parse_error(std::string(kOneFloe) + "run:\n  duration: long\n");
+  EXPECT_EQ(m, "t.yaml:4:13: key 'run.duration': expected a number [s], got 'long'");
+  m = parse_error(std::string(kOneFloe) + "run:\n  duration: '300'\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:4:13: key 'run.duration': expected a number [s], got the quoted string")) << m;
+  m = parse_error(std::string(kOneFloe) + "run: 5\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:3:6: key 'run': expected a block of keys (a map), got '5'")) << m;
+  m = parse_error(std::string(kOneFloe) + "forcing:\n  ocean:\n    current: [1, 2, 3]\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:5:14: key 'forcing.ocean.current': expected a list of 2 numbers [x, y] [m/s]"))
+      << m;
+  m = parse_error(std::string(kOneFloe) + "output:\n  vtk: maybe\n");
+  EXPECT_EQ(m, "t.yaml:4:8: key 'output.vtk': expected true or false, got 'maybe'");
+  m = parse_error(std::string(kOneFloe) + "contact: {damping_model: fast}\n");
+  EXPECT_TRUE(contains(m, "key 'contact.damping_model': expected one of speed_independent, paper, got 'fast'")) << m;
+  m = parse_error(std::string(kOneFloe) + "run: {dt: soon}\n");
+  EXPECT_TRUE(contains(m, "key 'run.dt': expected a number [s] or 'auto', got 'soon'")) << m;
+  m = parse_error(std::string(kOneFloe) + "floe_field: {corners: [5, 7.5]}\n");
+  EXPECT_TRUE(contains(m, "key 'floe_field.corners.1': expected an integer in [3, 64], got '7.5'")) << m;
+  m = parse_error(std::string(kOneFloe) + "floe_field: {seed: -1}\n");
+  EXPECT_TRUE(contains(m, "key 'floe_field.seed': expected a non-negative integer")) << m;
+  m = parse_error("floes: {a: 1}\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:1:8: key 'floes': expected a list of floes")) << m;
+}
+
+TEST(SceneErrors, OutOfRangeSaysTheRangeAndUnit) {
+  std::string m = parse_error(std::string(kOneFloe) + "contact:\n  restitution: 1.5\n");
+  EXPECT_EQ(m, "t.yaml:4:16: key 'contact.restitution': 1.5 is outside the allowed range (0, 1] [-]");
+  m = parse_error(std::string(kOneFloe) + "run: {duration: -5}\n");
+  EXPECT_EQ(m, "t.yaml:3:17: key 'run.duration': -5 is outside the allowed range (0, inf) [s]");
+  m = parse_error(std::string(kOneFloe) + "ice: {poisson_ratio: 0.5}\n");
+  EXPECT_TRUE(contains(m, "key 'ice.poisson_ratio': 0.5 is outside the allowed range [0, 0.5) [-]")) << m;
+  m = parse_error(std::string(kOneFloe) + "run: {steps_per_contact: 4}\n");
+  EXPECT_TRUE(contains(m, "[5, inf) [-]")) << m;
+  m = parse_error(std::string(kOneFloe) + "floe_field: {concentration: 0.8}\n");
+  EXPECT_TRUE(contains(m, "key 'floe_field.concentration': 0.8 is outside the allowed range (0, 0.7] [-]")) << m;
+  m = parse_error("floe_field:\n  size: {min: 10, max: 5}\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:2:24: key 'floe_field.size.max': size.max = 5 m must be >= size.min = 10 m"))
+      << m;
+  m = parse_error("floe_field:\n  region: [0, 0, -10, 100]\n");
+  EXPECT_TRUE(contains(m, "key 'floe_field.region.2': xmax = -10 must be > xmin = 0 [m]")) << m;
+}
+
+TEST(SceneErrors, NonFiniteNumbersAreRejected) {
+  for (const char* bad : {".nan", ".NaN", ".inf", "-.inf", "1e999"}) {
+    const std::string m = parse_error(std::string(kOneFloe) + "contact:\n  friction: " + bad + "\n");
+    EXPECT_TRUE(starts_with(m, "t.yaml:4:13: key 'contact.friction': ")) << m;
+    EXPECT_TRUE(contains(m, "is not a finite number")) << m;
+  }
+  const std::string m = parse_error("floes:\n  - polygon: [[0, 0], [1, .nan], [0, 1]]\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:2:27: key 'floes.0.polygon.1.1': .nan is not a finite number")) << m;
+}
+
+TEST(SceneErrors, MissingRequiredAndExclusiveKeys) {
+  std::string m = parse_error("floes:\n  - position: [0, 0]\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:2:5: key 'floes.0': missing the shape: give one of 'polygon', 'regular' or "
+                             "'rectangle'"))
+      << m;
+  m = parse_error("floes:\n  - regular: {sides: 6}\n");
+  EXPECT_TRUE(contains(m, "key 'floes.0.regular': missing required key 'radius'")) << m;
+  m = parse_error("floes:\n  - rectangle: {width: 1, height: 1}\n    regular: {sides: 3, radius: 1}\n");
+  EXPECT_TRUE(contains(m, "give only one of")) << m;
+  m = parse_error("floes:\n  - regular: {sides: 3, radius: 1}\n    yaw: 1\n    yaw_deg: 3\n");
+  EXPECT_TRUE(contains(m, "give only one of 'yaw' [rad] and 'yaw_deg' [deg]")) << m;
+}
+
+TEST(SceneErrors, BadPolygons) {
+  std::string m = parse_error("floes:\n  - polygon: [[0, 0], [0, 1], [1, 0]]\n");  // clockwise
+  EXPECT_TRUE(starts_with(m, "t.yaml:2:14: key 'floes.0.polygon': vertices are clockwise")) << m;
+  m = parse_error("floes:\n  - polygon: [[0, 0], [2, 0], [1, 0.1], [2, 2], [0, 2]]\n");
+  EXPECT_TRUE(contains(m, "not strictly convex")) << m;
+  m = parse_error("floes:\n  - polygon: [[0, 0], [1, 0]]\n");
+  EXPECT_TRUE(contains(m, "at least 3 points")) << m;
+}
+
+TEST(SceneErrors, DuplicateKeysAndIds) {
+  std::string m = parse_error(std::string(kOneFloe) + "run: {duration: 1, duration: 2}\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:3:20: key 'run.duration': duplicate key (first given at t.yaml:3:7)")) << m;
+  m = parse_error("floes:\n  - {regular: {sides: 3, radius: 1}, id: 4}\n  - {regular: {sides: 3, radius: 1}, id: 4}\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:3:42: key 'floes.1.id': id 4 is already used by floes.0 (t.yaml:2:5)")) << m;
+}
+
+TEST(SceneErrors, NoDynamicBody) {
+  EXPECT_TRUE(contains(parse_error(""), "the scene has no dynamic body"));
+  EXPECT_TRUE(contains(parse_error("floes:\n  - {regular: {sides: 3, radius: 1}, motion: fixed}\n"),
+                       "the scene has no dynamic body"));
+  EXPECT_TRUE(starts_with(parse_error("[1, 2]"), "t.yaml:1:1: a scene is a block of keys"));
+}
+
+TEST(SceneErrors, YamlSyntaxNamesFileAndLine) {
+  const std::string m = parse_error("floes:\n  - regular: {sides: 6, radius: 5\nrun:\n  duration: 3\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:")) << m;
+  EXPECT_TRUE(contains(m, "YAML syntax error")) << m;
+  const std::string tab = parse_error("run:\n  duration: 3\n\tdt: 1\n");
+  EXPECT_TRUE(starts_with(tab, "t.yaml:3:")) << tab;
+}
+
+TEST(SceneErrors, MissingFileNamesTheFile) {
+  const std::string m = error_of([] { read_scene("/nonexistent/dir/scene.yaml", {}); });
+  EXPECT_TRUE(starts_with(m, "/nonexistent/dir/scene.yaml: cannot read the scene file")) << m;
+  const std::string d = error_of([] { read_scene(kSceneDir, {}); });
+  EXPECT_TRUE(contains(d, "is a directory")) << d;
+}
+
+TEST(SceneErrors, ChannelValidationNamesTheKeyAndLine) {
+  const std::string m = parse_error(std::string(kOneFloe) + "channel:\n  opening: 1200\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:4:12: key 'channel.opening': 1200 is outside the allowed range (0, 1000)")) << m;
+}
+
+// --- overrides ---
+
+TEST(SceneOverrides, AppliedBeforeValidation) {
+  const Scene s = read_scene(kSceneDir + "channel.yaml",
+                             {"forcing.ocean.current=[0.5,0]", "floe_field.concentration=0.6", "run.dt=1e-3",
+                              "output.vtk=false", "name=renamed", "floe_field.size.exponent=1.6"});
+  EXPECT_EQ(s.world.drift.current, Vec2(0.5, 0.0));
+  EXPECT_EQ(s.floe_field->concentration, 0.6);
+  EXPECT_EQ(s.floe_field->exponent, 1.6);
+  EXPECT_EQ(s.time.dt, 1e-3);
+  EXPECT_FALSE(s.output.vtk);
+  EXPECT_EQ(s.name, "renamed");
+  EXPECT_EQ(s.overrides.size(), 6u);
+}
+
+TEST(SceneOverrides, ListItemsByIndexAndNewBlocks) {
+  const Scene s = read_scene(kSceneDir + "two_floes.yaml",
+                             {"floes.0.position=[1,2]", "floes.1.velocity=[-2, 0]", "contact.restitution=1",
+                              "floes.1.motion=fixed"});
+  EXPECT_EQ(s.bodies[0].position, Vec2(1, 2));
+  EXPECT_EQ(s.bodies[1].velocity, Vec2(-2, 0));
+  EXPECT_EQ(s.bodies[1].motion, dynamics::Motion::fixed);
+  EXPECT_EQ(s.world.contact.restitution, 1.0);
+  // A block that the file lacks is created; a whole list can be replaced.
+  const Scene t = parse_scene(kOneFloe, "t.yaml",
+                              {"channel.opening=100", "floes=[{rectangle: {width: 2, height: 3}}, "
+                                                      "{regular: {sides: 5, radius: 1}}]"});
+  ASSERT_TRUE(t.channel.has_value());
+  EXPECT_EQ(t.channel->opening, 100.0);
+  EXPECT_EQ(t.bodies.size(), 2u);
+  EXPECT_EQ(t.bodies[0].source.where, "--set floes");
+  // null removes an optional block.
+  EXPECT_FALSE(read_scene(kSceneDir + "channel.yaml", {"channel=~"}).channel.has_value());
+}
+
+TEST(SceneOverrides, ErrorsSayWhichSet) {
+  std::string m = parse_error(kOneFloe, {"contact.restitution=1.5"});
+  EXPECT_EQ(m, "--set contact.restitution: key 'contact.restitution': 1.5 is outside the allowed range (0, 1] [-]");
+  m = parse_error(kOneFloe, {"contct.restitution=0.5"});
+  EXPECT_TRUE(starts_with(m, "--set contct.restitution: unknown key 'contct'; allowed at the top level: name, ")) << m;
+  m = parse_error(kOneFloe, {"run.durration=5"});
+  EXPECT_TRUE(starts_with(m, "--set run.durration: unknown key 'run.durration'; allowed in 'run': duration, dt, "))
+      << m;
+  m = parse_error(kOneFloe, {"floes.3.position=[1,2]"});
+  EXPECT_TRUE(starts_with(m, "--set floes.3.position: 'floes' is a list of 1 items; '3' is not one of its indices"))
+      << m;
+  m = parse_error(kOneFloe, {"floes.0.regular.sides=two"});
+  EXPECT_EQ(m, "--set floes.0.regular.sides: key 'floes.0.regular.sides': expected an integer in [3, 64], got 'two'");
+  m = parse_error(std::string(kOneFloe) + "run: {duration: 3}\n", {"run.duration.x=1"});
+  EXPECT_TRUE(starts_with(m, "--set run.duration.x: 'run.duration' is a single value")) << m;
+  m = parse_error(kOneFloe, {"run.duration"});
+  EXPECT_TRUE(starts_with(m, "--set 'run.duration': expected key.path=value")) << m;
+  m = parse_error(kOneFloe, {"run..duration=3"});
+  EXPECT_TRUE(contains(m, "empty name")) << m;
+  m = parse_error(kOneFloe, {"forcing.ocean.current=[1, 2"});
+  EXPECT_TRUE(starts_with(m, "--set forcing.ocean.current: cannot read the value '[1, 2' as YAML")) << m;
+  m = parse_error("name: x\n", {"floes.0.position=[1,2]"});
+  EXPECT_TRUE(starts_with(m, "--set floes.0.position: there is no list 'floes'")) << m;
+  // Errors in the file itself keep the file's location even with overrides elsewhere.
+  m = parse_error(std::string(kOneFloe) + "run: {duration: 0}\n", {"run.dt=1"});
+  EXPECT_TRUE(starts_with(m, "t.yaml:3:17: key 'run.duration'")) << m;
+}
+
+// --- resolved YAML ---
+
+TEST(ResolvedYaml, RoundTripsTheExampleScenes) {
+  expect_round_trip(read_scene(kSceneDir + "channel.yaml", {}));
+  expect_round_trip(read_scene(kSceneDir + "two_floes.yaml", {}));
+}
+
+TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
+  const Scene s = parse_scene(
+      "name: 'odd \"name\"'\n"
+      "run: {duration: 12.5, dt: 3.3e-5, steps_per_contact: 17, reference_speed: 0.7}\n"
+      "output: {interval: 0.1, vtk: false, contacts: false, hdf5: false}\n"
+      "ice: {density: 900.5, youngs_modulus: 3.3e8, poisson_ratio: 0.123456789012345}\n"
+      "contact: {restitution: 0.1, friction: 0.7, damping_model: paper, broad_phase_cell: 12}\n"
+      "forcing:\n"
+      "  ocean: {density: 1000, current: [0.1, -0.2], skin_drag: {enabled: false, coefficient: 0.001}}\n"
+      "  air: {density: 1.3, wind: [-3, 7], drag: {enabled: false, coefficient: 0.002}}\n"
+      "floes:\n"
+      "  - {regular: {sides: 7, radius: 3}, position: [100, 5], yaw_deg: 33, velocity: [1, 2],\n"
+      "     angular_velocity: -0.3, thickness: 0.5, motion: kinematic, id: 99, external_force: [1e6, 2],\n"
+      "     external_torque: 5}\n"
+      "  - {rectangle: {width: 1, height: 2}, motion: fixed, position: [200, 0]}\n"
+      "  - {polygon: [[0, 0], [1, 0], [0, 1]], position: [300, 0]}\n"
+      "floe_field: {region: [-5, -6, 70, 80], concentration: 0.33, size: {min: 2, max: 9, exponent: 1},\n"
+      "             corners: 6, thickness: 1.5, velocity: [0.2, 0.1], seed: 18446744073709551615,\n"
+      "             max_attempts: 77}\n"
+      "channel: {basin_x_min: 1, basin_x_max: 2, basin_y_min: 3, basin_y_max: 400, funnel_length: 5,\n"
+      "          opening: 6, strait_length: 7, wall_thickness: 8}\n",
+      "all.yaml", {});
+  EXPECT_EQ(s.name, "odd \"name\"");
+  EXPECT_EQ(s.floe_field->corners_min, 6);
+  EXPECT_EQ(s.floe_field->corners_max, 6);
+  EXPECT_EQ(s.floe_field->seed, 18446744073709551615ull);
+  expect_round_trip(s);
+  const std::string text = resolved_yaml(s);
+  EXPECT_TRUE(contains(text, "duration: 12.5  # [s]")) << text;
+  EXPECT_TRUE(contains(text, "dt: 3.3e-5  # [s]")) << text;
+  EXPECT_TRUE(contains(text, "external_force: [1e6, 2]  # [N]")) << text;
+  EXPECT_TRUE(contains(text, "youngs_modulus: 3.3e8  # [Pa]")) << text;
+}
+
+
+// --- build_world ---
+
+BodySpec square(const Vec2& position, double side = 2.0) {
+  BodySpec b;
+  const double h = 0.5 * side;
+  b.polygon = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
+  b.position = position;
+  return b;
+}
+
+TEST(BuildWorld, TwoFloes) {
+  const Scene s = read_scene(kSceneDir + "two_floes.yaml", {});
+  const dynamics::World w = build_world(s);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w.id(0), 0u);
+  EXPECT_EQ(w.id(1), 1u);
+  EXPECT_NEAR(w.positions()[0].x(), -6.0, 1e-12);
+  EXPECT_NEAR(w.positions()[1].x(), 6.0, 1e-12);
+  EXPECT_EQ(w.velocities()[1], Vec2(-1.0, 0.0));
+  EXPECT_NEAR(w.mass(0), 920.0 * 100.0, 1e-6);
+  EXPECT_EQ(reference_speed(s), 2.0);
+  EXPECT_EQ(w.settings().contact.reference_speed, 2.0);
+  const double dt = time_step(s, w);
+  EXPECT_NEAR(dt, w.shortest_contact_duration(2.0) / 40.0, 1e-15);
+  EXPECT_GT(dt, 0.0);
+  Scene fixed = s;
+  fixed.time.dt = 1e-4;
+  EXPECT_EQ(time_step(fixed, w), 1e-4);
+}
+
+TEST(BuildWorld, ChannelSceneIdsWallsAndField) {
+  const Scene s = read_scene(kSceneDir + "channel.yaml", {});
+  const double v = forcing::free_drift_velocity(s.world.drift).norm();
+  EXPECT_GT(v, 4.0);
+  EXPECT_EQ(reference_speed(s), std::max(1.0, v));
+  const dynamics::World w = build_world(s);
+  EXPECT_EQ(w.settings().contact.reference_speed, reference_speed(s));
+  ASSERT_GT(w.size(), 1006u);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(w.id(i), static_cast<dynamics::BodyId>(i));
+    EXPECT_EQ(w.motion(i), dynamics::Motion::fixed);
+  }
+  for (int i = 6; i < static_cast<int>(w.size()); ++i) {
+    EXPECT_EQ(w.id(i), static_cast<dynamics::BodyId>(i));
+    EXPECT_EQ(w.motion(i), dynamics::Motion::dynamic);
+  }
+  EXPECT_GT(time_step(s, w), 0.0);
+}
+
+TEST(BuildWorld, GivenAndAutomaticIds) {
+  Scene s;
+  s.bodies = {square({0, 0}), square({10, 0}), square({20, 0})};
+  s.bodies[1].id = 0;
+  s.bodies[2].id = 5;
+  const dynamics::World w = build_world(s);
+  EXPECT_EQ(w.id(0), 1u);
+  EXPECT_EQ(w.id(1), 0u);
+  EXPECT_EQ(w.id(2), 5u);
+}
+
+TEST(BuildWorld, ErrorsNameTheSources) {
+  Scene s;
+  s.bodies = {square({0, 0}), square({10, 0})};
+  s.bodies[0].source.where = "a.yaml:3:5";
+  s.bodies[1].source.where = "a.yaml:7:5";
+  s.bodies[0].id = s.bodies[1].id = 4;
+  std::string m = error_of([&] { build_world(s); });
+  EXPECT_EQ(m, "a.yaml:7:5 (floes.1): id 4 is already used by a.yaml:3:5 (floes.0)");
+
+  s.bodies[1].id.reset();
+  s.bodies[1].position = {1.5, 0.5};
+  m = error_of([&] { build_world(s); });
+  EXPECT_TRUE(starts_with(m, "a.yaml:7:5 (floes.1): overlaps a.yaml:3:5 (floes.0) initially")) << m;
+
+  s.bodies[1].position = {2.0, 0.0};  // touching edge to edge is fine
+  EXPECT_NO_THROW(build_world(s));
+
+  s.bodies[1].polygon = {{0, 0}, {0, 1}, {1, 0}};  // clockwise
+  m = error_of([&] { build_world(s); });
+  EXPECT_TRUE(starts_with(m, "a.yaml:7:5 (floes.1): polygon: vertices are clockwise")) << m;
+
+  Scene c;
+  c.bodies = {square({500, -10}, 4.0)};  // inside the lower basin wall
+  c.bodies[0].source.where = "c.yaml:9:5";
+  c.channel = ChannelSpec{};
+  c.channel->source.where = "c.yaml:20:3";
+  m = error_of([&] { build_world(c); });
+  EXPECT_TRUE(starts_with(m, "c.yaml:9:5 (floes.0): overlaps c.yaml:20:3 (channel basin wall (y min)) initially"))
+      << m;
+  c.bodies[0].motion = dynamics::Motion::fixed;  // fixed bodies may overlap walls
+  EXPECT_NO_THROW(build_world(c));
+}
+
+TEST(BuildWorld, GeneratedFloesAvoidExplicitBodiesAndComeLast) {
+  Scene s;
+  BodySpec island = square({100, 100}, 60.0);
+  island.motion = dynamics::Motion::fixed;
+  s.bodies = {island};
+  FloeFieldSpec f;
+  f.region_max = {200.0, 200.0};
+  f.size_max = 30.0;
+  f.concentration = 0.4;
+  s.floe_field = f;
+  const dynamics::World w = build_world(s);
+  ASSERT_GT(w.size(), 10u);
+  const std::vector<Vec2> island_world(w.world_vertices(0).begin(), w.world_vertices(0).end());
+  for (int i = 1; i < static_cast<int>(w.size()); ++i) {
+    EXPECT_EQ(w.id(i), static_cast<dynamics::BodyId>(i));
+    const std::vector<Vec2> v(w.world_vertices(i).begin(), w.world_vertices(i).end());
+    EXPECT_GT(polygon_separation(v, island_world), 0.0) << i;
+  }
+}
+
+}  // namespace
+}  // namespace polyfloe::scene
