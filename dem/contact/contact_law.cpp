@@ -88,6 +88,7 @@ PairCoefficients ContactLaw::coefficients(double r_a, double r_b, double m_a, do
   c.k_n = 4.0 / 3.0 * e_star_ * std::sqrt(r);
   c.k_s = c.k_n / (2.0 + 2.0 * s_.poisson_ratio);
   c.mu = s_.friction;
+  c.m_star = m;
   if (s_.damping == DampingModel::speed_independent) {
     c.damping = zeta_ * std::sqrt(m * c.k_n);
   } else {

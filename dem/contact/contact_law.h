@@ -50,6 +50,7 @@ struct PairCoefficients {
   double k_s = 0.0;      // [N/m^1.5]
   double damping = 0.0;  // c [N s/m^(1+p)]
   double mu = 0.0;       // [-]
+  double m_star = 0.0;   // effective mass [kg]
 };
 
 struct ContactForce {

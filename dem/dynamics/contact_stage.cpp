@@ -1,5 +1,6 @@
 // Stage: broad phase, planar narrow phase and the contact law, accumulated into forces and torques.
 #include <chrono>
+#include <cmath>
 #include <utility>
 
 #include "dynamics/world.h"
@@ -13,6 +14,8 @@ void World::contact_forces(double dt) {
   const auto t1 = clock::now();
 
   contacts_.clear();
+  worst_q2_ = worst_v2_ = 0.0;
+  worst_a_ = worst_b_ = -1;
   for (const contact::CandidatePair& cp : pairs_) {
     // Orient every pair by id so the stored spring has one meaning whatever the index order.
     int a = cp.a, b = cp.b;
@@ -30,8 +33,18 @@ void World::contact_forces(double dt) {
     const double m_a = is_dynamic_[a] ? mass_[a] : contact::kInfinite;
     const double m_b = is_dynamic_[b] ? mass_[b] : contact::kInfinite;
     const contact::PairCoefficients k = law_.coefficients(radius_[a], radius_[b], m_a, m_b);
-    const contact::ContactForce cf =
-        law_.evaluate(k, g.depth, -v_rel.dot(g.normal), v_rel.dot(t), cache_.previous(key), dt);
+    const double rate = -v_rel.dot(g.normal);
+    const contact::ContactForce cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), cache_.previous(key), dt);
+    // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
+    const double km = k.k_n / k.m_star;
+    const double v2 = rate * rate + 0.8 * km * g.depth * g.depth * std::sqrt(g.depth);
+    const double q2 = v2 * (km * km) * (km * km);
+    if (q2 > worst_q2_) {
+      worst_q2_ = q2;
+      worst_v2_ = v2;
+      worst_a_ = a;
+      worst_b_ = b;
+    }
     cache_.store(key, cf.spring);
 
     const Vec2 f = cf.normal * g.normal + cf.tangential * t;  // on b

@@ -147,6 +147,17 @@ double World::max_speed() const {
   return v;
 }
 
+World::ContactResolution World::shortest_active_contact() const {
+  ContactResolution r;
+  if (worst_a_ < 0 || !(worst_q2_ > 0.0)) return r;
+  // t_c = 3.2181 (m*/k_n)^(2/5) v^(-1/5) = 3.2181 (v^2 (k_n/m*)^4)^(-1/10)
+  r.duration = 3.2181 * std::pow(worst_q2_, -0.1);
+  r.impact_speed = std::sqrt(worst_v2_);
+  r.a = worst_a_;
+  r.b = worst_b_;
+  return r;
+}
+
 double World::shortest_contact_duration(double speed) const {
   double m_min = contact::kInfinite, r_min = contact::kInfinite;
   for (std::size_t i = 0; i < size(); ++i) {

@@ -85,6 +85,16 @@ class World {
   const contact::ContactCache& contact_cache() const { return cache_; }
   contact::ContactCache& contact_cache() { return cache_; }
 
+  // The shortest Hertz contact duration implied by the contacts of the last force evaluation: each contact's
+  // impact speed is estimated from its approach rate and its stored elastic energy,
+  // v^2 = d_dot^2 + (4/5) k_n d^2.5 / m*. A step that does not resolve it (t_c < a few dt) is unstable.
+  struct ContactResolution {
+    double duration = contact::kInfinite;  // [s]
+    double impact_speed = 0.0;             // [m/s]
+    int a = -1, b = -1;                    // body indices of that contact
+  };
+  ContactResolution shortest_active_contact() const;
+
   // --- diagnostics ---
   double kinetic_energy() const;             // dynamic bodies, translation + rotation [J]
   Vec2 linear_momentum() const;              // dynamic bodies [kg m/s]
@@ -138,6 +148,9 @@ class World {
   // scratch
   std::vector<contact::CandidatePair> pairs_;
   std::vector<ContactRecord> contacts_;
+  double worst_q2_ = 0.0;  // max over contacts of v^2 (k_n/m*)^4: the shortest contact has the largest
+  double worst_v2_ = 0.0;
+  int worst_a_ = -1, worst_b_ = -1;
   StepProfile profile_;
 };
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "contact/contact_law.h"
 #include "io/atomic_file.h"
 #include "io/hdf5_writer.h"
 #include "io/progress.h"
@@ -13,6 +14,8 @@
 #include "scene/scene_reader.h"
 
 namespace polyfloe::run {
+
+using geometry::Vec2;
 
 namespace {
 
@@ -31,7 +34,22 @@ void clear_previous_outputs(const std::filesystem::path& dir) {
 
 }  // namespace
 
+void check_contact_resolution(const dynamics::World& w, double dt) {
+  std::ostringstream why;
+  constexpr double kMinStepsPerContact = 5.0;
+  const dynamics::World::ContactResolution r = w.shortest_active_contact();
+  if (r.a >= 0 && r.duration < kMinStepsPerContact * dt) {
+    why << "the contact between bodies " << w.id(r.a) << " and " << w.id(r.b) << " at t = " << w.time() << " s (step "
+        << w.step_count() << ") has an impact speed of about " << r.impact_speed << " m/s, so it lasts " << r.duration
+        << " s: only " << r.duration / dt << " time steps of dt = " << dt << " s (at least " << kMinStepsPerContact
+        << " are needed, 40 for accuracy). Set run.reference_speed to " << r.impact_speed
+        << " (the automatic time step then resolves such impacts), or run.dt to " << r.duration / 40.0 << ".";
+    throw InstabilityError(why.str());
+  }
+}
+
 void check_stability(const dynamics::World& w, double dt, double reference_speed) {
+  check_contact_resolution(w, dt);
   const auto pos = w.positions();
   const auto vel = w.velocities();
   const auto om = w.angular_velocities();
@@ -110,7 +128,9 @@ RunSummary Simulation::run() {
     const double h = std::min(dt, t_end - world_.time());
     world_.step(h);
     const bool last = world_.time() >= t_end * (1.0 - 1e-12);
+    // O(1) every step (a contact can start and end between two full checks); O(N) every few steps.
     if (last || world_.step_count() % guard_every == 0) check_stability(world_, dt, v_ref);
+    else check_contact_resolution(world_, dt);
     if (last || world_.time() >= next_frame * (1.0 - 1e-12)) {
       write_frame();
       while (next_frame <= world_.time() * (1.0 + 1e-12)) next_frame += interval;

@@ -1,0 +1,109 @@
+// The polyfloe command line: help, version, exit codes 0/2/3, messages that name file, line and key, and no
+// output folder left behind by bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result polyfloe(const std::string& args) {
+  const std::string cmd = std::string(POLYFLOE_BINARY) + " " + args + " 2>&1";
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path write_scene(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+const std::string kScene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/two_floes.yaml";
+
+}  // namespace
+
+TEST(Cli, HelpAndVersion) {
+  Result r = polyfloe("--help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.output.find("polyfloe run SCENE"), std::string::npos);
+  r = polyfloe("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.output.rfind("polyfloe ", 0), 0u);
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(polyfloe("").code, 2);
+  EXPECT_EQ(polyfloe("fly " + kScene).code, 2);
+  EXPECT_EQ(polyfloe("run").code, 2);
+  EXPECT_EQ(polyfloe("run " + kScene + " --threads 0").code, 2);
+  EXPECT_EQ(polyfloe("run " + kScene + " --set novalue").code, 2);
+  EXPECT_EQ(polyfloe("run " + kScene + " --bogus").code, 2);
+}
+
+TEST(Cli, CheckPrintsTheTimeStep) {
+  const Result r = polyfloe("check " + kScene);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("time step:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("bodies: 2"), std::string::npos) << r.output;
+}
+
+TEST(Cli, BadSceneNamesLineAndKeyAndWritesNothing) {
+  const fs::path scene = write_scene("polyfloe_bad_scene.yaml",
+                                     "run:\n  duration: 10\ncontact:\n  restitution: 1.5\nfloes:\n"
+                                     "  - regular: {sides: 6, radius: 5}\n");
+  const fs::path out = fs::temp_directory_path() / "polyfloe_bad_scene_out";
+  fs::remove_all(out);
+  const Result r = polyfloe("run " + scene.string() + " -o " + out.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("polyfloe_bad_scene.yaml:4:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("contact.restitution"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // A misspelt key from the command line.
+  const Result s = polyfloe("run " + kScene + " -o " + out.string() + " --set contact.restitutio=0.5");
+  EXPECT_EQ(s.code, 2);
+  EXPECT_NE(s.output.find("--set contact.restitutio"), std::string::npos) << s.output;
+  EXPECT_FALSE(fs::exists(out));
+  // A missing file.
+  const Result m = polyfloe("run /nonexistent/scene.yaml -o " + out.string());
+  EXPECT_EQ(m.code, 2);
+  EXPECT_NE(m.output.find("/nonexistent/scene.yaml"), std::string::npos) << m.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, RunWritesOutputs) {
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_run";
+  fs::remove_all(out);
+  const Result r = polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=1.5");
+  EXPECT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"floes.pvd", "contacts.pvd", "results.h5", "scene.resolved.yaml"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  fs::remove_all(out);
+}
+
+TEST(Cli, UnresolvedContactStopsWithExitThree) {
+  // A 0.05 s step cannot resolve a ~0.03 s Hertz impact: the guard must stop the run, name the bodies and say
+  // what to change, instead of letting the floes fly apart at ten times their impact speed.
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_unstable";
+  const Result r = polyfloe("run " + kScene + " -o " + out.string() + " --set run.dt=0.05");
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_NE(r.output.find("bodies 0 and 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run.dt"), std::string::npos) << r.output;
+  fs::remove_all(out);
+}
