@@ -9,10 +9,11 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include "pvd.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -20,21 +21,6 @@
 namespace fs = std::filesystem;
 
 namespace {
-
-struct PvdEntry {
-  double time;
-  std::string file;
-};
-
-std::vector<PvdEntry> read_pvd(const fs::path& pvd) {
-  std::ifstream in(pvd);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::vector<PvdEntry> out;
-  const std::regex re(R"re(<DataSet[^>]*timestep="([^"]+)"[^>]*file="([^"]+)")re");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
-    out.push_back({std::stod((*it)[1]), (*it)[2]});
-  return out;
-}
 
 std::vector<std::uint64_t> read_u64(hid_t file, const char* name) {
   const hid_t ds = H5Dopen2(file, name, H5P_DEFAULT);
@@ -73,17 +59,17 @@ TEST(ChannelScene, RunsAndEveryFrameHoldsAllFloes) {
   H5Fclose(h5);
   EXPECT_GT(floes.size(), 1000u);  // a 1 km x 1 km field at 50 %: ~1200 floes
 
-  const auto entries = read_pvd(out / "floes.pvd");
+  const auto entries = polyfloe::tsupport::read_pvd(out / "floes.pvd");
   ASSERT_EQ(static_cast<long long>(entries.size()), static_cast<long long>(frames_h5));
   EXPECT_EQ(entries.size(), 61u);  // t = 0, 5, ..., 300 s
-  EXPECT_NEAR(entries.back().time, 300.0, 1e-6);
+  EXPECT_NEAR(entries.back().first, 300.0, 1e-6);
 
   double mean_x_first = 0.0, mean_x_last = 0.0;
   for (std::size_t f = 0; f < entries.size(); ++f) {
     vtkNew<vtkXMLPolyDataReader> reader;
-    reader->SetFileName((out / entries[f].file).c_str());
+    reader->SetFileName((out / entries[f].second).c_str());
     reader->Update();
-    ASSERT_EQ(reader->GetErrorCode(), 0u) << entries[f].file;
+    ASSERT_EQ(reader->GetErrorCode(), 0u) << entries[f].second;
     vtkPolyData* pd = reader->GetOutput();
     vtkDataArray* id = pd->GetCellData()->GetArray("id");
     vtkDataArray* mo = pd->GetCellData()->GetArray("motion");
@@ -92,7 +78,7 @@ TEST(ChannelScene, RunsAndEveryFrameHoldsAllFloes) {
     std::set<std::uint64_t> seen;
     for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
       if (mo->GetTuple1(c) == 0) seen.insert(static_cast<std::uint64_t>(id->GetTuple1(c)));
-    EXPECT_EQ(seen, floes) << "frame " << f << " (" << entries[f].file << ")";
+    EXPECT_EQ(seen, floes) << "frame " << f << " (" << entries[f].second << ")";
     // Mean x of the floe points (bottom and top rings).
     double sx = 0.0;
     vtkIdType np = 0;

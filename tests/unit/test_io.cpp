@@ -2,6 +2,8 @@
 // Every file written is read back with the readers users have (VTK's XML reader, the HDF5 C API).
 #include <gtest/gtest.h>
 
+#include "pvd.h"
+
 #include <hdf5.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -19,7 +21,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -128,12 +129,7 @@ std::vector<std::pair<double, std::string>> parse_pvd(const fs::path& file) {
   const std::string text = slurp(file);
   EXPECT_NE(text.find("<VTKFile type=\"Collection\""), std::string::npos);
   EXPECT_NE(text.find("</VTKFile>"), std::string::npos);
-  std::vector<std::pair<double, std::string>> out;
-  const std::regex entry(R"re(<DataSet\s+timestep="([^"]+)"[^>]*\sfile="([^"]+)"\s*/>)re");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it) {
-    out.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
-  }
-  return out;
+  return polyfloe::tsupport::read_pvd(file);
 }
 
 // Newell normal of a polygon cell (not normalised).
