@@ -16,7 +16,7 @@ constexpr int kMaxClipped = 2 * kMaxPolygonVertices + 2;
 // A polygon under clipping: vertices and, per vertex, where the edge leaving it lies (on ∂A or on ∂B).
 struct ClipPolygon {
   Vec2 p[kMaxClipped];
-  bool on_a[kMaxClipped];
+  int edge[kMaxClipped];  // the edge leaving each vertex: i < na is A's edge i, na + j is B's edge j
   int n = 0;
 };
 
@@ -59,8 +59,11 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   cur->n = na;
   for (int i = 0; i < na; ++i) {
     cur->p[i] = a[i] - origin;
-    cur->on_a[i] = true;
+    cur->edge[i] = i;
   }
+  // A's edge i runs from a[i] to a[i+1]; B's edge j from b[j-1] to b[j] (the order the clipping visits them).
+  auto a_normal = [&](int i) { return perp_right(a[(i + 1 == na) ? 0 : i + 1] - a[i]); };
+  auto b_normal = [&](int j) { return perp_right(b[j] - b[(j == 0) ? nb - 1 : j - 1]); };
 
   double s[kMaxClipped];
   Vec2 b0 = b[nb - 1] - origin;
@@ -83,13 +86,13 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
       const bool in0 = s[k] <= 0.0, in1 = s[k1] <= 0.0;
       if (in0) {
         nxt->p[m] = cur->p[k];
-        nxt->on_a[m++] = cur->on_a[k];
+        nxt->edge[m++] = cur->edge[k];
       }
       if (in0 != in1) {
         const double t = s[k] / (s[k] - s[k1]);
         nxt->p[m] = cur->p[k] + t * (cur->p[k1] - cur->p[k]);
         // Leaving the half-plane: the new edge runs along B's line. Entering: it continues the old edge.
-        nxt->on_a[m++] = in0 ? false : cur->on_a[k];
+        nxt->edge[m++] = in0 ? na + j : cur->edge[k];
       }
     }
     nxt->n = m;
@@ -106,7 +109,7 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   for (int k = 0; k < n; ++k) {
     const int k1 = (k + 1 == n) ? 0 : k + 1;
     const Vec2 e = cur->p[k1] - cur->p[k];
-    (cur->on_a[k] ? chord_a : chord_b) += perp_right(e);
+    (cur->edge[k] < na ? chord_a : chord_b) += perp_right(e);
     const Vec2 q0 = cur->p[k] - p0, q1 = cur->p[k1] - p0;
     const double w = cross(q0, q1);
     a2 += w;
@@ -114,22 +117,71 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   }
   if (!(a2 > 0.0)) return false;  // touching along an edge or at a vertex: no overlap
   out.area = 0.5 * a2;
-  out.point = origin + p0 + c / (3.0 * a2);
+  const Vec2 g = p0 + c / (3.0 * a2);  // centroid, relative to `origin`
+  out.point = origin + g;
   // chord_a = -chord_b for a closed polygon; averaging keeps the result antisymmetric in A and B.
   const Vec2 chord = 0.5 * (chord_a - chord_b);
   const double len = chord.norm();
   double scale = 0.0;
   for (int k = 0; k < n; ++k) scale = std::max(scale, (cur->p[k] - p0).lpNorm<Eigen::Infinity>());
-  if (len > 1e-9 * scale) {
-    out.chord = len;
-    out.normal = chord / len;
-    out.depth = out.area / len;
-  } else {
+  out.moment = 0.0;
+  out.ga = out.gb = Vec2{0.0, 0.0};
+  out.ha = out.hb = 0.0;
+  if (!(len > 1e-9 * scale)) {
     // One polygon inside the other: no boundary crossing to define a chord.
     out.chord = 0.0;
     least_penetration(a, b, out);
+    return true;
   }
+  out.chord = len;
+  out.normal = chord / len;
+  out.depth = out.area / len;
+  // Gradient terms: the moment of the ∂A part (averaged with minus the ∂B part) and the sliding crossings.
+  double m_a = 0.0, m_b = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const int k1 = (k + 1 == n) ? 0 : k + 1;
+    const Vec2 ne = perp_right(cur->p[k1] - cur->p[k]);
+    const double m = cross(0.5 * (cur->p[k] + cur->p[k1]) - g, ne);
+    (cur->edge[k] < na ? m_a : m_b) += m;
+    const int in = cur->edge[(k == 0) ? n - 1 : k - 1], outgoing = cur->edge[k];
+    if ((in < na) == (outgoing < na)) continue;  // not a crossing of the two boundaries
+    // Exit of a ∂A chain (arriving on A, leaving on B) counts +, an entry -.
+    const bool exit = in < na;
+    const int ia = exit ? in : outgoing, jb = (exit ? outgoing : in) - na;
+    const Vec2 n_a = a_normal(ia), n_b = b_normal(jb);
+    const double det = cross(n_a, n_b);
+    // Nearly parallel edges: the crossing's speed is unbounded but the overlap it bounds is a sliver whose
+    // contribution S/L^2 * dL vanishes with it; leave it out rather than divide by ~0.
+    if (std::abs(det) <= 1e-9 * n_a.norm() * n_b.norm()) continue;
+    const double sgn = exit ? 1.0 : -1.0;
+    const double c1 = sgn * cross(out.normal, perp_right(n_b)) / det;
+    const double c2 = sgn * cross(out.normal, geometry::perp_left(n_a)) / det;
+    const Vec2 r = cur->p[k] - g;
+    out.ga += c1 * n_a;
+    out.ha += c1 * cross(r, n_a);
+    out.gb += c2 * n_b;
+    out.hb += c2 * cross(r, n_b);
+  }
+  out.moment = 0.5 * (m_a - m_b);
   return true;
+}
+
+DepthGradient depth_gradient(const PlanarContact& g, const Vec2& x_a, const Vec2& x_b) {
+  DepthGradient d;
+  const Vec2 da = x_a - g.point, db = x_b - g.point;  // body centres relative to the centroid
+  if (g.chord > 0.0) {
+    // depth = S/L: d(depth) = dS/L - S/L^2 dL, with dS/dv_b = -N and dS/dw_b = -(M - cross(x_b - c, N)).
+    const double inv_l = 1.0 / g.chord, s_l2 = g.area * inv_l * inv_l;
+    const Vec2 n_vec = g.chord * g.normal;
+    d.grad_b = -g.normal - s_l2 * g.gb;
+    d.grad_wb = -(g.moment - cross(db, n_vec)) * inv_l - s_l2 * (g.hb - cross(db, g.gb));
+  } else {
+    d.grad_b = -g.normal;
+    d.grad_wb = cross(db, g.normal);
+  }
+  d.grad_a = -d.grad_b;
+  d.grad_wa = -d.grad_wb + cross(da - db, d.grad_b);
+  return d;
 }
 
 }  // namespace polyfloe::contact

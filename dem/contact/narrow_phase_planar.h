@@ -11,6 +11,15 @@
 //   depth   |P| / |N|: the mean thickness of the overlap measured across the chord [m]
 // When A lies wholly inside B or B inside A the chord vanishes; the normal then falls back to the
 // separating-axis direction of least penetration and the depth to that penetration.
+//
+// Energy consistency: the contact energy is a function of the depth, W(depth), so the contact force must be the
+// gradient of depth = |P| / |N| with respect to both bodies' positions and rotations. The area part of that
+// gradient is carried by N and the moment M of the ∂A part of the boundary; the chord-length part by how the
+// boundary crossings slide along the edges they lie on. A crossing x of A's edge (normal n_a) and B's edge (n_b)
+// moves with x' = [n_a·u_A(x) perp_right(n_b) + n_b·u_B(x) perp_left(n_a)] / cross(n_a, n_b), u_i the rigid
+// velocity field of body i; summed over exits minus entries of the ∂A chains, projected on N/|N|, this gives
+// d|N|/dt = ga·v_A + (ha - cross(x_A - c, ga)) w_A + gb·v_B + (hb - cross(x_B - c, gb)) w_B (c the centroid).
+// dynamics/contact_stage.cpp assembles the generalised force from these terms.
 #pragma once
 
 #include <span>
@@ -29,8 +38,24 @@ struct PlanarContact {
   Vec2 point{0.0, 0.0};   // centroid of the overlap polygon [m]
   double depth = 0.0;     // overlap area / chord length [m]
   double area = 0.0;      // overlap area [m^2]
-  double chord = 0.0;     // chord length |N| [m]
+  double chord = 0.0;     // chord length |N| [m]; 0 in the containment fallback
+  // Gradient terms (see above), all about the centroid `point`:
+  double moment = 0.0;    // M: sum over ∂A edges of cross(midpoint - point, edge normal x length) [m^2]
+  Vec2 ga{0.0, 0.0};      // d|N|/dv_A [-]
+  Vec2 gb{0.0, 0.0};      // d|N|/dv_B [-]
+  double ha = 0.0;        // d|N|/dw_A about the centroid [m]
+  double hb = 0.0;        // d|N|/dw_B about the centroid [m]
 };
+
+// Gradient of the depth with respect to the velocities of two bodies whose centres are x_a, x_b:
+// d(depth)/dt = grad_a·v_a + grad_wa w_a + grad_b·v_b + grad_wb w_b. grad_a = -grad_b and grad_wa follows from
+// rotation invariance, so a force pair built from it conserves momentum and angular momentum exactly.
+// In the containment fallback (chord = 0) it is the plain normal at the centroid.
+struct DepthGradient {
+  Vec2 grad_a{0.0, 0.0}, grad_b{0.0, 0.0};  // [-]
+  double grad_wa = 0.0, grad_wb = 0.0;       // [m]
+};
+DepthGradient depth_gradient(const PlanarContact& c, const Vec2& x_a, const Vec2& x_b);
 
 // `a`, `b`: world-frame vertices, counter-clockwise, strictly convex, at most kMaxPolygonVertices each.
 // Returns false when the interiors do not overlap; touching (zero overlap area) counts as no contact.

@@ -24,16 +24,37 @@ void World::contact_forces(double dt) {
     if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g)) continue;
 
     const Vec2 t = geometry::perp_left(g.normal);
-    const Vec2 ra = g.point - pos_[a], rb = g.point - pos_[b];
+    const Vec2 ra = g.point - pos_[a], rb = g.point - pos_[b];  // centroid relative to each body
     const Vec2 va = vel_eval_[a] + omega_eval_[a] * geometry::perp_left(ra);
     const Vec2 vb = vel_eval_[b] + omega_eval_[b] * geometry::perp_left(rb);
     const Vec2 v_rel = vb - va;
 
+    const Vec2 da = -ra, db = -rb;  // body centres relative to the centroid
+    const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
+    // Normal direction on b (per unit normal force) and its moment about b's centre, and the depth rate.
+    Vec2 dir_b;
+    double arm_b, rate;
+    if (gradient) {
+      // The force is -F_n grad(depth) (see narrow_phase_planar.h): conservative with W = 2/5 k_n d^2.5.
+      const contact::DepthGradient dg = contact::depth_gradient(g, pos_[a], pos_[b]);
+      dir_b = -dg.grad_b;
+      arm_b = -dg.grad_wb;
+      rate = dg.grad_a.dot(vel_eval_[a]) + dg.grad_wa * omega_eval_[a] + dg.grad_b.dot(vel_eval_[b]) +
+             dg.grad_wb * omega_eval_[b];
+    } else {
+      dir_b = g.normal;
+      arm_b = geometry::cross(rb, g.normal);
+      rate = -v_rel.dot(g.normal);
+    }
+
     const contact::PairKey key{id_[a], id_[b]};
     const double m_a = is_dynamic_[a] ? mass_[a] : contact::kInfinite;
     const double m_b = is_dynamic_[b] ? mass_[b] : contact::kInfinite;
-    const contact::PairCoefficients k = law_.coefficients(radius_[a], radius_[b], m_a, m_b);
-    const double rate = -v_rel.dot(g.normal);
+    contact::PairCoefficients k = law_.coefficients(radius_[a], radius_[b], m_a, m_b);
+    // Coulomb caps friction by the normal component of the contact force; in the gradient model that is
+    // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
+    // penetration).
+    if (gradient) k.mu *= std::max(0.0, dir_b.dot(g.normal));
     const contact::ContactForce cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), cache_.previous(key), dt);
     // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
     const double km = k.k_n / k.m_star;
@@ -47,12 +68,16 @@ void World::contact_forces(double dt) {
     }
     cache_.store(key, cf.spring);
 
-    const Vec2 f = cf.normal * g.normal + cf.tangential * t;  // on b
+    // On b: the normal part, and friction along t at the centroid; a gets the opposite force and the torque that
+    // keeps the total angular momentum unchanged.
+    const Vec2 ft = cf.tangential * t;
+    const Vec2 f = cf.normal * dir_b + ft;
+    const double tau_b = cf.normal * arm_b + geometry::cross(rb, ft);
     force_[b] += f;
-    torque_[b] += geometry::cross(rb, f);
+    torque_[b] += tau_b;
     force_[a] -= f;
-    torque_[a] -= geometry::cross(ra, f);
-    contacts_.push_back({a, b, g, cf.normal, cf.tangential, cf.sliding});
+    torque_[a] += -tau_b + geometry::cross(da - db, f);
+    contacts_.push_back({a, b, g, cf.normal, cf.tangential, cf.sliding, f});
   }
   cache_.end_step();
   const auto t2 = clock::now();

@@ -8,10 +8,6 @@
 
 namespace polyfloe::dynamics {
 
-Vec2 ContactRecord::force_on_b() const {
-  return normal_force * geometry.normal + tangential_force * geometry::perp_left(geometry.normal);
-}
-
 World::World(const WorldSettings& settings)
     : settings_(settings), law_(settings.contact), broad_(settings.broad_phase_cell) {}
 

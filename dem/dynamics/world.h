@@ -32,7 +32,9 @@ struct ContactRecord {
   double normal_force = 0.0;   // [N], on b along +normal
   double tangential_force = 0.0;  // [N], on b along k x normal
   bool sliding = false;
-  Vec2 force_on_b() const;     // total contact force on b [N]
+  Vec2 force{0.0, 0.0};        // total contact force on b [N] (the normal part follows the depth gradient,
+                               // within a few degrees of the normal)
+  Vec2 force_on_b() const { return force; }
 };
 
 // Wall-clock seconds spent in each stage of step(), summed over steps.

@@ -405,6 +405,8 @@ void read_contact(MapReader m, dynamics::WorldSettings& w) {
   m.choice("damping_model", w.contact.damping,
            {{"speed_independent", contact::DampingModel::speed_independent},
             {"paper", contact::DampingModel::paper}});
+  m.choice("force_model", w.contact.force_model,
+           {{"centroid", contact::ForceModel::centroid}, {"gradient", contact::ForceModel::gradient}});
   std::optional<double> cell;
   if (w.broad_phase_cell > 0.0) cell = w.broad_phase_cell;
   m.number_or_auto("broad_phase_cell", cell, positive("m"));
@@ -744,6 +746,7 @@ std::string resolved_yaml(const Scene& s) {
     << "  friction: " << fmt(c.friction) << "  # [-] Coulomb coefficient\n"
     << "  damping_model: "
     << (c.damping == contact::DampingModel::paper ? "paper" : "speed_independent") << "\n"
+    << "  force_model: " << (c.force_model == contact::ForceModel::gradient ? "gradient" : "centroid") << "\n"
     << "  broad_phase_cell: "
     << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n";
   const forcing::DriftSettings& d = s.world.drift;

@@ -109,6 +109,52 @@ TEST(NarrowPhase, RandomPairsAgainstBruteForce) {
   std::printf("compared %d overlapping pairs, %d contained, %d separated\n", compared, contained, separated);
 }
 
+// The depth gradient (used by the energy-conserving force model) against central differences of the depth when B
+// (or A) is translated and rotated about its centroid.
+TEST(NarrowPhase, DepthGradientMatchesFiniteDifferences) {
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int checked = 0;
+  for (int it = 0; it < 3000; ++it) {
+    const double sa = 5.0 + 45.0 * u(rng), sb = 5.0 + 45.0 * u(rng);
+    const auto a0 = tsupport::random_convex(rng, 3 + static_cast<int>(u(rng) * 10), 0.5 * sa, 0.4 * sa);
+    const auto b0 = tsupport::random_convex(rng, 3 + static_cast<int>(u(rng) * 10), 0.5 * sb, 0.35 * sb);
+    const Vec2 ca = geometry::polygon_properties(a0).centroid, cb = geometry::polygon_properties(b0).centroid;
+    const double dist = 0.5 * (sa + sb) * (0.3 + 0.5 * u(rng)), ang = 6.3 * u(rng);
+    const Vec2 xa{0.0, 0.0}, xb = dist * Vec2(std::cos(ang), std::sin(ang));
+    const double ya = 6.3 * u(rng), yb = 6.3 * u(rng);
+    // Polygon placed so that its centroid sits at x, rotated by yaw about it.
+    auto place = [](const std::vector<Vec2>& v, const Vec2& c, double yaw, const Vec2& x) {
+      std::vector<Vec2> local;
+      for (const Vec2& p : v) local.push_back(p - c);
+      return tsupport::transform(local, yaw, x);
+    };
+    PlanarContact c;
+    if (!contact::planar_overlap(place(a0, ca, ya, xa), place(b0, cb, yb, xb), c) || c.chord == 0.0) continue;
+    auto depth = [&](const Vec2& pa, double ta, const Vec2& pb, double tb) {
+      PlanarContact d;
+      if (!contact::planar_overlap(place(a0, ca, ta, pa), place(b0, cb, tb, pb), d)) return 0.0;
+      return d.depth;
+    };
+    const contact::DepthGradient g = contact::depth_gradient(c, xa, xb);
+    const double h = 1e-6 * std::max(sa, sb), hr = 1e-7;
+    const Vec2 ex{h, 0.0}, ey{0.0, h};
+    const double fd_bx = (depth(xa, ya, xb + ex, yb) - depth(xa, ya, xb - ex, yb)) / (2 * h);
+    const double fd_by = (depth(xa, ya, xb + ey, yb) - depth(xa, ya, xb - ey, yb)) / (2 * h);
+    const double fd_wb = (depth(xa, ya, xb, yb + hr) - depth(xa, ya, xb, yb - hr)) / (2 * hr);
+    const double fd_wa = (depth(xa, ya + hr, xb, yb) - depth(xa, ya - hr, xb, yb)) / (2 * hr);
+    const double gscale = 1.0 + g.grad_b.norm();
+    const double wscale = std::max(sa, sb) * gscale;
+    EXPECT_NEAR(g.grad_b.x(), fd_bx, 1e-4 * gscale) << "pair " << it;
+    EXPECT_NEAR(g.grad_b.y(), fd_by, 1e-4 * gscale) << "pair " << it;
+    EXPECT_NEAR(g.grad_wb, fd_wb, 1e-4 * wscale) << "pair " << it;
+    EXPECT_NEAR(g.grad_wa, fd_wa, 1e-4 * wscale) << "pair " << it;
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000);
+  std::printf("depth gradient checked on %d overlapping pairs\n", checked);
+}
+
 TEST(NarrowPhase, TouchingIsNoContact) {
   const std::vector<Vec2> sq = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
   PlanarContact c;

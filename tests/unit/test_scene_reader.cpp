@@ -248,7 +248,7 @@ TEST(SceneErrors, UnknownKeyNamesLineAndAllowedKeys) {
                                     "  restitution: 0.5\n"
                                     "  restitutoin: 0.4\n");
   EXPECT_TRUE(starts_with(m, "t.yaml:5:3: unknown key 'contact.restitutoin'; allowed in 'contact': restitution, "
-                             "friction, damping_model, broad_phase_cell"))
+                             "friction, damping_model, force_model, broad_phase_cell"))
       << m;
   const std::string top = parse_error(std::string(kOneFloe) + "flooes: []\n");
   EXPECT_TRUE(starts_with(top, "t.yaml:3:1: unknown key 'flooes'; allowed at the top level: name, run, ")) << top;
@@ -442,7 +442,7 @@ TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
       "run: {duration: 12.5, dt: 3.3e-5, steps_per_contact: 17, reference_speed: 0.7}\n"
       "output: {interval: 0.1, vtk: false, contacts: false, hdf5: false}\n"
       "ice: {density: 900.5, youngs_modulus: 3.3e8, poisson_ratio: 0.123456789012345}\n"
-      "contact: {restitution: 0.1, friction: 0.7, damping_model: paper, broad_phase_cell: 12}\n"
+      "contact: {restitution: 0.1, friction: 0.7, damping_model: paper, force_model: gradient, broad_phase_cell: 12}\n"
       "forcing:\n"
       "  ocean: {density: 1000, current: [0.1, -0.2], skin_drag: {enabled: false, coefficient: 0.001}}\n"
       "  air: {density: 1.3, wind: [-3, 7], drag: {enabled: false, coefficient: 0.002}}\n"

@@ -4,22 +4,17 @@
 //      pairwise equal and opposite and act at one common point, and the velocity-Verlet kicks apply them at one
 //      configuration, so linear momentum and angular momentum about the origin are conserved to rounding.
 //      Reference: the initial values; tolerance 1e-10 relative to sum m|v| (and sum m|x x v| + I|w|).
-//   b. Energy in a field of 200 floes, frictionless, e = 1 (no damping): kinetic + elastic (2/5 k_n d^2.5 per
-//      contact) against the initial kinetic energy, 0.5 %. DISABLED: it fails (1.9 %, and 0.6 % even at instants
-//      with no contact at all). Found: the contact force is not conservative for general polygon contacts, and the
-//      energy change of an isolated collision does not depend on the time step (identical at 40, 160 and 640
-//      steps per contact). Two causes, each isolated by a test below or by the numbers in the report:
-//        - the point of application: the force acts at the overlap centroid, which for a corner pressed into a
-//          face lies off the normal through the corner unless the corner is bisected by that normal, so its
-//          torque is not the rotational derivative of any contact energy (DISABLED_LopsidedCornerOnFaceImpact);
-//        - the depth and normal of corner-on-corner overlaps (quadrilaterals): d = area / chord with the chord
-//          normal is not a gradient field even without rotation (energy errors of percents with rotation frozen).
-//      Also, 2/5 k_n d^2.5 is the stored energy only for face-on-face contacts; for a corner on a face d = h/2
-//      (h = penetration) and the stored energy is 4/5 k_n d^2.5 (SymmetricCornerOnFaceImpact).
+//   b. Energy in a field of 200 floes, frictionless, e = 1 (no damping): kinetic + elastic (W = 2/5 k_n d^2.5
+//      per contact) against the initial kinetic energy, 0.5 %. The normal force is the exact gradient of
+//      W(d) with d = area / chord (including how the chord's end points slide), so it is conservative; what is
+//      left is the integrator's O(dt^2) error. Before that (force along the chord normal at the overlap
+//      centroid) this test measured 1.9 %: corner-on-face torques and corner-on-corner depths were not
+//      derivatives of any energy.
 //   c. One frictionless e = 1 head-on impact of two squares (flat faces, where the force is exactly
 //      k_n d^1.5 of the true overlap width). Reference: the kinetic energy before the impact; tolerance 0.1 %.
-//   d. A corner-on-face impact with the corner bisected by the face normal: conservative, with the stored energy
-//      4/5 k_n d^2.5 and d = h/2 exactly.
+//   d. Corner-on-face impacts, the corner bisected by the face normal (d = h/2 exactly, h the penetration) and
+//      lopsided (yaw 30 degrees, where a force at the overlap centroid was not conservative): the stored energy is
+//      2/5 k_n d^2.5 and the kinetic energy is recovered after the impact.
 //
 // The numbers printed are the ones quoted in docs/validation.md.
 #include <gtest/gtest.h>
@@ -107,8 +102,10 @@ Field make_field(std::uint64_t seed, int n, double spacing, double v_max, double
   return f;
 }
 
-dynamics::WorldSettings free_space(double mu, double e) {
+dynamics::WorldSettings free_space(double mu, double e,
+                                   contact::ForceModel model = contact::ForceModel::centroid) {
   dynamics::WorldSettings ws;
+  ws.contact.force_model = model;
   ws.contact.friction = mu;
   ws.contact.restitution = e;
   ws.drift.skin_drag = ws.drift.air_drag = false;
@@ -151,10 +148,15 @@ struct CollisionStats {
 
 }  // namespace
 
-TEST(Conservation, MomentumWithFrictionAndDamping) {
+class ConservationByModel : public ::testing::TestWithParam<contact::ForceModel> {};
+
+std::string model_name(contact::ForceModel m) { return m == contact::ForceModel::gradient ? "gradient" : "centroid"; }
+
+TEST_P(ConservationByModel, MomentumWithFrictionAndDamping) {
   const Field f = make_field(20240613, 200, 9.5, 1.0, 0.1);
   ASSERT_EQ(f.bodies.size(), 200u);
-  dynamics::World w(free_space(0.5, 0.5));
+  dynamics::World w(free_space(0.5, 0.5, GetParam()));
+  std::printf("force model %s\n", model_name(GetParam()).c_str());
   for (const auto& b : f.bodies) w.add_body(b);
   const double dt = w.shortest_contact_duration(2.0) / 40.0;
   const Vec2 p0 = w.linear_momentum();
@@ -183,13 +185,14 @@ TEST(Conservation, MomentumWithFrictionAndDamping) {
   EXPECT_LT(l_err, 1e-10);
 }
 
-// Disabled: fails (measured max |KE + U - E0|/E0 = 1.9 %; at contact-free instants |KE - E0|/E0 up to 0.6 %),
-// because the contact force is not conservative for general polygon contacts; see the header of this file and the
-// corner-on-face impacts below. Run with --gtest_also_run_disabled_tests to see the numbers.
-TEST(Conservation, DISABLED_EnergyFrictionlessElasticField) {
+// The acceptance run: the gradient force model conserves energy; the centroid model's drift is measured and
+// bounded (a regression guard, and the number quoted in docs/validation.md).
+TEST_P(ConservationByModel, EnergyFrictionlessElasticField) {
+  const bool gradient = GetParam() == contact::ForceModel::gradient;
   const Field f = make_field(777, 200, 9.5, 1.0, 0.1);
   ASSERT_EQ(f.bodies.size(), 200u);
-  dynamics::World w(free_space(0.0, 1.0));
+  dynamics::World w(free_space(0.0, 1.0, GetParam()));
+  std::printf("force model %s\n", model_name(GetParam()).c_str());
   for (const auto& b : f.bodies) w.add_body(b);
   const double dt = w.shortest_contact_duration(2.0) / 40.0;
   const double e0 = w.kinetic_energy();
@@ -218,12 +221,12 @@ TEST(Conservation, DISABLED_EnergyFrictionlessElasticField) {
   EXPECT_GT(stats.contact_steps, 5000u);
   EXPECT_GE(stats.pairs.size(), 100u);
   EXPECT_GT(free_steps, 0);
-  EXPECT_LT(max_err, 5e-3);
-  EXPECT_LT(max_free_err, 5e-3);
+  EXPECT_LT(max_err, gradient ? 5e-3 : 3e-2);
+  EXPECT_LT(max_free_err, gradient ? 5e-3 : 3e-2);
 }
 
-TEST(Conservation, HeadOnElasticImpactOfSquares) {
-  dynamics::World w(free_space(0.0, 1.0));
+TEST_P(ConservationByModel, HeadOnElasticImpactOfSquares) {
+  dynamics::World w(free_space(0.0, 1.0, GetParam()));
   auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
   const double v = 1.0;
   w.add_body({.id = 1, .shape = sq, .position = {-5.0 - 1e-3, 0.0}, .velocity = {0.5 * v, 0.0}});
@@ -263,8 +266,9 @@ struct VertexImpact {
 
 // A 10 m square at `yaw` hits, corner first, the left face (x = 0) of a free 20 m square at 1 m/s, `offset` m off
 // the line of centres; frictionless, e = 1.
-VertexImpact corner_on_face(double yaw, double offset, double steps_per_contact) {
-  dynamics::World w(free_space(0.0, 1.0));
+VertexImpact corner_on_face(double yaw, double offset, double steps_per_contact,
+                            contact::ForceModel model = contact::ForceModel::gradient) {
+  dynamics::World w(free_space(0.0, 1.0, model));
   auto small = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
   auto big = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(20, 20));
   const double reach = 5.0 * std::sqrt(2.0) * std::cos(std::numbers::pi / 4 - yaw);  // corner's x from the centre
@@ -304,34 +308,38 @@ VertexImpact corner_on_face(double yaw, double offset, double steps_per_contact)
 }  // namespace
 
 // A corner pressed into a face: the overlap is a triangle whose depth (area / chord) is exactly half the corner's
-// penetration h, so F_n = k_n (h/2)^1.5 and the stored energy is 4/5 k_n d^2.5 (not 2/5: d advances at half the
-// rate of h). With the corner bisected by the face normal (yaw 45 degrees) the overlap centroid lies on the normal
-// through the corner and the force is conservative. Reference: E0 = the kinetic energy before the impact;
-// tolerances: d = h/2 to 1e-9, KE after the impact 0.1 %, KE + 4/5 k_n d^2.5 during it 0.1 %.
+// penetration h. The force is the gradient of W = 2/5 k_n d^2.5, i.e. k_n d^1.5 x dd/dh = k_n (h/2)^1.5 / 2 along
+// the normal, so the stored energy is 2/5 k_n d^2.5 (the 4/5 column shows what a force of k_n d^1.5 would store).
+// Reference: E0 = the kinetic energy before the impact; tolerances: d = h/2 to 1e-9, KE after the impact 1e-4,
+// KE + 2/5 k_n d^2.5 during it 0.1 %.
 TEST(Conservation, SymmetricCornerOnFaceImpact) {
   for (double offset : {0.0, 3.0}) {
     const VertexImpact r = corner_on_face(std::numbers::pi / 4, offset, 40.0);
     std::printf("corner on face, yaw 45 deg, offset %.0f m: %d contact steps, KE after/before - 1 = %.3e, "
-                "max |KE + 4/5 k d^2.5 - E0|/E0 = %.3e (with 2/5: %.3e), max |d - h/2|/(h/2) = %.1e\n",
-                offset, r.contact_steps, r.ke_error, r.max_error_45, r.max_error_25, r.max_half_depth_error);
+                "max |KE + 2/5 k d^2.5 - E0|/E0 = %.3e (with 4/5: %.3e), max |d - h/2|/(h/2) = %.1e\n",
+                offset, r.contact_steps, r.ke_error, r.max_error_25, r.max_error_45, r.max_half_depth_error);
     EXPECT_LT(r.max_half_depth_error, 1e-9);
-    EXPECT_LT(std::abs(r.ke_error), 1e-3);
-    EXPECT_LT(r.max_error_45, 1e-3);
+    EXPECT_LT(std::abs(r.ke_error), 1e-4);
+    EXPECT_LT(r.max_error_25, 1e-3);
   }
 }
 
-// Disabled: fails. The same impact with the corner not bisected by the face normal (yaw 30 degrees): the overlap
-// triangle is lopsided, its centroid is off the normal through the corner, and the torque of a force applied there
-// is not the derivative of the contact energy with respect to rotation. Measured: KE after/before - 1 = -2.1e-3 at
-// 40 and at 400 steps per contact (so not a time-step error). Applying the force on the line through the
-// penetrating corner instead makes it conservative again (measured 1.6e-5 mean over 171 random corner-on-edge
-// impacts, against 6.6e-3 with the centroid).
-TEST(Conservation, DISABLED_LopsidedCornerOnFaceImpact) {
+// The same impact with the corner not bisected by the face normal (yaw 30 degrees): the overlap triangle is
+// lopsided. With the force at the overlap centroid this lost 2.1e-3 of the kinetic energy at 40 and at 400 steps
+// per contact (not a time-step error); with the gradient force it is conservative.
+TEST(Conservation, LopsidedCornerOnFaceImpact) {
   for (double steps : {40.0, 400.0}) {
     const VertexImpact r = corner_on_face(std::numbers::pi / 6, 0.0, steps);
     std::printf("corner on face, yaw 30 deg, %.0f steps per contact: KE after/before - 1 = %.3e, "
-                "max |KE + 4/5 k d^2.5 - E0|/E0 = %.3e\n",
-                steps, r.ke_error, r.max_error_45);
-    EXPECT_LT(std::abs(r.ke_error), 1e-3);
+                "max |KE + 2/5 k d^2.5 - E0|/E0 = %.3e\n",
+                steps, r.ke_error, r.max_error_25);
+    EXPECT_LT(std::abs(r.ke_error), 1e-4);
+    EXPECT_LT(r.max_error_25, 1e-3);
+    const VertexImpact c = corner_on_face(std::numbers::pi / 6, 0.0, steps, contact::ForceModel::centroid);
+    std::printf("  the same with the centroid force model: KE after/before - 1 = %.3e\n", c.ke_error);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(ForceModels, ConservationByModel,
+                         ::testing::Values(contact::ForceModel::centroid, contact::ForceModel::gradient),
+                         [](const auto& info) { return model_name(info.param); });
