@@ -53,6 +53,19 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   // Work relative to A's first vertex: keeps precision for floes far from the origin.
   const Vec2 origin = a[0];
 
+  // Quick rejection along the line between the vertex means: most broad-phase candidates that do not touch are
+  // separated along it (touching counts as separated, as below).
+  {
+    Vec2 ma{0.0, 0.0}, mb{0.0, 0.0};
+    for (int i = 0; i < na; ++i) ma += a[i];
+    for (int j = 0; j < nb; ++j) mb += b[j];
+    const Vec2 axis = mb / nb - ma / na;
+    double hi_a = -std::numeric_limits<double>::infinity(), lo_b = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < na; ++i) hi_a = std::max(hi_a, axis.dot(a[i] - origin));
+    for (int j = 0; j < nb; ++j) lo_b = std::min(lo_b, axis.dot(b[j] - origin));
+    if (hi_a <= lo_b) return false;
+  }
+
   ClipPolygon buf[2];
   ClipPolygon* cur = &buf[0];
   ClipPolygon* nxt = &buf[1];
