@@ -26,6 +26,8 @@ void GridBroadPhase::find_pairs(std::span<const geometry::Aabb> boxes, std::span
     }
   }
   if (dynamic_count == 0) return;
+  // A non-finite box (a body whose state blew up) makes no grid; the run guard reports the body.
+  if (!std::isfinite(lo.x()) || !std::isfinite(lo.y()) || !std::isfinite(hi.x()) || !std::isfinite(hi.y())) return;
   cell_ = requested_cell_ > 0.0 ? requested_cell_ : 2.0 * extent_sum / dynamic_count;
   const geometry::Vec2 span = hi - lo;
   // Keep the grid no larger than ~4 cells per body (bodies spread far apart, or a tiny requested cell).

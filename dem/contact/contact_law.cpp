@@ -37,7 +37,7 @@ double restitution_from_damping(double zeta, DampingModel model) {
   if (zeta <= 0.0) return 1.0;
   const Impact f{zeta, model == DampingModel::paper};
   // RK4 in nondimensional time; an undamped impact lasts 3.218 units.
-  const double h = 1.0e-3;  // e converged to ~1e-7 (checked against h = 2e-4)
+  const double h = 1.0e-3;  // zeta within 1e-5 of the h = 2e-4 value
   double x = 0.0, v = 1.0;
   for (int it = 0; it < 1000000; ++it) {
     const double k1x = v, k1v = -f.force(x, v);

@@ -97,6 +97,8 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     for (int k = 0; k < cur->n; ++k) {
       const int k1 = (k + 1 == cur->n) ? 0 : k + 1;
       const bool in0 = s[k] <= 0.0, in1 = s[k1] <= 0.0;
+      // At most na + nb vertices in exact arithmetic (< kMaxClipped); this only guards the buffer.
+      if (m + 2 > kMaxClipped) return false;
       if (in0) {
         nxt->p[m] = cur->p[k];
         nxt->edge[m++] = cur->edge[k];

@@ -32,8 +32,8 @@ struct ContactRecord {
   double normal_force = 0.0;   // [N], on b along +normal
   double tangential_force = 0.0;  // [N], on b along k x normal
   bool sliding = false;
-  Vec2 force{0.0, 0.0};        // total contact force on b [N] (the normal part follows the depth gradient,
-                               // within a few degrees of the normal)
+  Vec2 force{0.0, 0.0};        // total contact force on b [N] (force_model gradient: the normal part follows
+                               // the depth gradient, close to but not exactly along the normal)
   Vec2 force_on_b() const { return force; }
 };
 

@@ -107,3 +107,51 @@ TEST(Cli, UnresolvedContactStopsWithExitThree) {
   EXPECT_NE(r.output.find("run.dt"), std::string::npos) << r.output;
   fs::remove_all(out);
 }
+
+TEST(Cli, KinematicBodiesDoNotTripTheSpeedGuard) {
+  // A long plate spinning at 0.6 rad/s: its tip moves at 60 m/s, as the scene prescribes; that is not instability.
+  const fs::path scene = write_scene("polyfloe_kinematic.yaml",
+                                     "run: {duration: 1, dt: 0.001}\n"
+                                     "forcing: {ocean: {skin_drag: {enabled: false}}, air: {drag: {enabled: false}}}\n"
+                                     "floes:\n"
+                                     "  - regular: {sides: 6, radius: 5}\n"
+                                     "    position: [0, 50]\n"
+                                     "  - rectangle: {width: 200, height: 2}\n"
+                                     "    motion: kinematic\n"
+                                     "    angular_velocity: 0.6\n");
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_kinematic";
+  const Result r = polyfloe("run " + scene.string() + " -o " + out.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  fs::remove_all(out);
+}
+
+TEST(Cli, OverflowingDragStopsWithExitThree) {
+  // dt = 100 s makes the explicit quadratic drag overshoot and grow without bound within a few steps.
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_overflow";
+  const Result r = polyfloe("run " + kScene + " -o " + out.string() +
+                            " --set run.dt=100 --set run.duration=3000 --set forcing.ocean.skin_drag.enabled=true"
+                            " --set floes.0.velocity=[10,0] --set floes.0.position=[-1000,0]");
+  EXPECT_EQ(r.code, 3) << r.output;
+  fs::remove_all(out);
+}
+
+TEST(Cli, TinyOutputIntervalFinishes) {
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_tiny_interval";
+  const Result r = polyfloe("run " + kScene + " -o " + out.string() +
+                            " --set output.interval=1e-300 --set run.duration=0.01");
+  EXPECT_EQ(r.code, 0) << r.output;
+  fs::remove_all(out);
+}
+
+TEST(Cli, RunKeepsUnrelatedFilesInTheOutputFolder) {
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_keep";
+  fs::remove_all(out);
+  fs::create_directories(out / "floes");
+  std::ofstream(out / "floes" / "notes.txt") << "mine";
+  std::ofstream(out / "floes" / "floes_000099.vtp") << "stale frame of an earlier run";
+  const Result r = polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "floes" / "notes.txt"));
+  EXPECT_FALSE(fs::exists(out / "floes" / "floes_000099.vtp"));
+  fs::remove_all(out);
+}
