@@ -7,15 +7,31 @@ namespace polyfloe::contact {
 PairKey make_key(std::uint64_t a, std::uint64_t b) { return a < b ? PairKey{a, b} : PairKey{b, a}; }
 
 double ContactCache::previous(const PairKey& k) const {
-  const auto it = prev_.find(k);
-  return it == prev_.end() ? 0.0 : it->second;
+  if (index_.empty()) return 0.0;
+  const std::size_t mask = index_.size() - 1;
+  for (std::size_t h = PairKeyHash{}(k) & mask;; h = (h + 1) & mask) {
+    const std::int32_t i = index_[h];
+    if (i < 0) return 0.0;
+    if (prev_[static_cast<std::size_t>(i)].first == k) return prev_[static_cast<std::size_t>(i)].second;
+  }
 }
 
-void ContactCache::store(const PairKey& k, double spring) { cur_[k] = spring; }
+void ContactCache::rebuild_index() {
+  std::size_t cap = 16;
+  while (cap < 2 * prev_.size()) cap *= 2;
+  index_.assign(cap, -1);
+  const std::size_t mask = cap - 1;
+  for (std::size_t i = 0; i < prev_.size(); ++i) {
+    std::size_t h = PairKeyHash{}(prev_[i].first) & mask;
+    while (index_[h] >= 0) h = (h + 1) & mask;
+    index_[h] = static_cast<std::int32_t>(i);
+  }
+}
 
 void ContactCache::end_step() {
   prev_.swap(cur_);
   cur_.clear();
+  rebuild_index();
 }
 
 std::vector<std::pair<PairKey, double>> ContactCache::entries() const {
@@ -27,9 +43,9 @@ std::vector<std::pair<PairKey, double>> ContactCache::entries() const {
 }
 
 void ContactCache::restore(const std::vector<std::pair<PairKey, double>>& entries) {
-  prev_.clear();
+  prev_ = entries;
   cur_.clear();
-  for (const auto& [k, v] : entries) prev_[k] = v;
+  rebuild_index();
 }
 
 }  // namespace polyfloe::contact

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace polyfloe::contact {
@@ -27,8 +26,8 @@ class ContactCache {
  public:
   // Spring value stored for this pair by the previous step, or 0 for a new contact.
   double previous(const PairKey& k) const;
-  // Record this step's value; the pair survives into the next step.
-  void store(const PairKey& k, double spring);
+  // Record this step's value; the pair survives into the next step. Each pair is stored at most once a step.
+  void store(const PairKey& k, double spring) { cur_.emplace_back(k, spring); }
   // Called once per step after all stores: this step's entries become the previous ones.
   void end_step();
   std::size_t size() const { return prev_.size(); }
@@ -37,7 +36,11 @@ class ContactCache {
   void restore(const std::vector<std::pair<PairKey, double>>& entries);
 
  private:
-  std::unordered_map<PairKey, double, PairKeyHash> prev_, cur_;
+  void rebuild_index();
+  // This step's stores, appended in order (no hashing on the hot path), and last step's entries with an
+  // open-addressing index (linear probing, power-of-two size, at most half full). No allocation once warm.
+  std::vector<std::pair<PairKey, double>> cur_, prev_;
+  std::vector<std::int32_t> index_;  // position in prev_, -1 = empty
 };
 
 }  // namespace polyfloe::contact

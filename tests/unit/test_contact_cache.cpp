@@ -1,0 +1,47 @@
+// The contact history cache: values survive exactly one step unless refreshed, keys are unordered id pairs,
+// lookups stay correct under heavy probing, and entries()/restore() round-trip in a deterministic order.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "contact/contact_cache.h"
+
+using polyfloe::contact::ContactCache;
+using polyfloe::contact::make_key;
+
+TEST(ContactCache, ValuesLiveOneStepUnlessRefreshed) {
+  ContactCache c;
+  EXPECT_EQ(c.previous(make_key(1, 2)), 0.0);
+  c.store(make_key(2, 1), 0.5);  // order of the ids does not matter
+  c.store(make_key(3, 4), -1.5);
+  c.end_step();
+  EXPECT_EQ(c.previous(make_key(1, 2)), 0.5);
+  EXPECT_EQ(c.previous(make_key(4, 3)), -1.5);
+  EXPECT_EQ(c.previous(make_key(1, 3)), 0.0);
+  c.store(make_key(1, 2), 0.7);  // only this pair is still touching
+  c.end_step();
+  EXPECT_EQ(c.previous(make_key(1, 2)), 0.7);
+  EXPECT_EQ(c.previous(make_key(3, 4)), 0.0);
+  EXPECT_EQ(c.size(), 1u);
+}
+
+TEST(ContactCache, ManyEntriesAndRoundTrip) {
+  std::mt19937_64 rng(5);
+  ContactCache c;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> keys;
+  for (int i = 0; i < 50000; ++i) keys.emplace_back(rng() % 100000, 100000 + rng() % 100000);
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  for (std::size_t i = 0; i < keys.size(); ++i) c.store(make_key(keys[i].first, keys[i].second), 1.0 + i);
+  c.end_step();
+  for (std::size_t i = 0; i < keys.size(); ++i) ASSERT_EQ(c.previous(make_key(keys[i].second, keys[i].first)), 1.0 + i);
+  EXPECT_EQ(c.previous(make_key(200001, 200002)), 0.0);
+  const auto e = c.entries();
+  ASSERT_EQ(e.size(), keys.size());
+  for (std::size_t i = 1; i < e.size(); ++i)
+    EXPECT_TRUE(e[i - 1].first.lo < e[i].first.lo || (e[i - 1].first.lo == e[i].first.lo && e[i - 1].first.hi < e[i].first.hi));
+  ContactCache d;
+  d.restore(e);
+  for (std::size_t i = 0; i < keys.size(); i += 97) EXPECT_EQ(d.previous(make_key(keys[i].first, keys[i].second)), 1.0 + i);
+  EXPECT_EQ(d.entries(), e);
+}
