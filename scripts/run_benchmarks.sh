@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# Builds the benchmarks (Release) and runs them: the planar narrow phase (tests/bench/bench_narrow_phase.cpp) and the
+# whole World::step (tests/bench/bench_step.cpp). Console output on the terminal, JSON in the results folder.
+#
+#   bash scripts/run_benchmarks.sh [-b BUILD_DIR] [-o RESULTS_DIR] [-r REPETITIONS] [-- EXTRA_BENCHMARK_ARGS...]
+#
+#   -b  build folder (default build-bench; configured as Release with Ninja when new)
+#   -o  results folder (default results/bench): bench_narrow_phase.json, bench_step.json, machine.txt
+#   -r  repetitions; > 1 adds --benchmark_repetitions=N --benchmark_report_aggregates_only=true (mean, median,
+#       stddev, cv) and --benchmark_enable_random_interleaving=true (repetitions of different cases are shuffled,
+#       so a burst of load elsewhere on the machine does not land on one case); docs/performance.md quotes the
+#       medians of -r 5
+#   after --: passed to both executables (e.g. --benchmark_filter=DensePack)
+#
+# Run time once built, on the 2-core reference machine: about 40 s for -r 1, about 2.5 min for -r 5.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+BUILD_DIR="build-bench"
+OUT_DIR="results/bench"
+REPS=1
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    -b) BUILD_DIR="$2"; shift 2 ;;
+    -o) OUT_DIR="$2"; shift 2 ;;
+    -r) REPS="$2"; shift 2 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    --) shift; break ;;
+    *) echo "run_benchmarks.sh: unknown argument '$1' (try -h)" >&2; exit 2 ;;
+  esac
+done
+if ! [[ "$REPS" =~ ^[1-9][0-9]*$ ]]; then
+  echo "run_benchmarks.sh: -r expects a positive integer, got '$REPS'" >&2
+  exit 2
+fi
+
+run() {
+  echo "+ $*"
+  "$@"
+}
+
+# Configure (Release) and build only the two benchmark targets.
+generator=()
+if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
+run cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
+if ! run cmake --build "$BUILD_DIR" --target bench_narrow_phase bench_step -j "$(nproc)"; then
+  echo "run_benchmarks.sh: build failed (the benchmark targets need Google Benchmark: apt-get install libbenchmark-dev)" >&2
+  exit 1
+fi
+
+mkdir -p "$OUT_DIR"
+{
+  echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
+  echo "commit: $(git describe --always --dirty --tags 2>/dev/null || echo unknown)"
+  echo "compiler: $(c++ --version | head -n 1)"
+  echo "nproc: $(nproc)"
+  lscpu 2>/dev/null | grep -E '^(Model name|CPU\(s\)|Thread|Core|Socket|CPU family|Model:|L1d|L2|L3|Hypervisor)' || true
+} >"$OUT_DIR/machine.txt"
+
+extra=()
+if [[ "$REPS" -gt 1 ]]; then
+  extra=(--benchmark_repetitions="$REPS" --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true)
+fi
+
+for b in bench_narrow_phase bench_step; do
+  run "$BUILD_DIR/tests/$b" --benchmark_format=console --benchmark_counters_tabular=false \
+    --benchmark_out="$OUT_DIR/$b.json" --benchmark_out_format=json "${extra[@]}" "$@"
+done
+echo "JSON and machine description in $OUT_DIR/"
+
+# Compact summary of the JSON (medians when repeated): what docs/performance.md tabulates.
+if command -v python3 >/dev/null; then
+  python3 - "$OUT_DIR" <<'PY'
+import json, sys, os
+out = sys.argv[1]
+def rows(name):
+    with open(os.path.join(out, name)) as f:
+        data = json.load(f)
+    runs = [b for b in data["benchmarks"] if b.get("run_type") != "aggregate" or b.get("aggregate_name") == "median"]
+    runs = [b for b in runs if "error_occurred" not in b]
+    key = lambda b: (b["run_name"].split("/")[0], int(b["run_name"].split("/")[1]))
+    return sorted(runs, key=key)
+print("\nsummary (median over repetitions where repeated; CPU time)")
+print("  narrow phase             ns/pair")
+for b in rows("bench_narrow_phase.json"):
+    print(f"  {b['run_name'].split('/min_time')[0]:<24} {b['ns_per_pair']:8.1f}")
+print("  step                     us/floe-step  contacts/floe  candidates/floe  narrow_only ns/floe  narrow_law ns/floe")
+for b in rows("bench_step.json"):
+    print(f"  {b['run_name'].split('/iterations')[0]:<24} {b['us_per_floe_step']:12.3f}  {b['contacts_per_floe']:13.3f}"
+          f"  {b['candidates_per_floe']:15.3f}  {b['narrow_only_ns']:19.0f}  {b['narrow_law_ns']:18.0f}")
+PY
+fi

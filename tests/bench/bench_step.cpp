@@ -1,0 +1,310 @@
+// Cost of a whole World::step per floe (kick, drift, world-frame shapes, broad phase, narrow phase + contact law +
+// contact cache, drift forcing), single thread.
+//
+//   BM_DensePack/<N>   a jammed pack at area fraction ~0.87 inside four fixed walls: every floe already presses on
+//                      about four neighbours (or a wall) with ~2 mm overlaps when timing starts.
+//   BM_DensePackSorted/150000  the same pack with the bodies stored in lattice (row-major) order, so that bodies
+//                      close in space are close in memory: what locality is worth.
+//   BM_FreeDrift/<N>   an open field at area fraction ~0.62 with random velocities (few contacts).
+//
+// Bodies are stored in random order (as a generated field stores them, largest first, with no relation to
+// position) except in BM_DensePackSorted.
+//
+// All have skin and air drag on (current 0.2 m/s, wind 10 m/s, not aligned), h = 1 m, and
+// dt = shortest_contact_duration(1 m/s) / 40, the time step a scene would use.
+//
+// How the pack is built (no DEM compaction needed, so 150,000 floes set up in seconds): generators on a square
+// lattice of spacing s = 9 m, jittered by up to +-0.03 s; each floe is its generator's Voronoi cell (inside the
+// domain box) intersected with a 10-gon of circumradius rho = 0.56 s at random angles around the generator, then
+// scaled about the generator by (1 + eps), eps = 2e-4. Two neighbours whose bisector cuts both 10-gons share a
+// piece of it, so after the scaling they overlap along it by eps x their distance (~2 mm); a cell on the domain
+// edge overlaps its wall the same way. With that jitter nearly every lattice link is such a face and no diagonal
+// one is, so rows and columns are unbroken chains between two walls: the pack stays jammed (~4 contacts per floe
+// over thousands of steps) instead of relaxing into gaps. ~12 vertices per floe, area fraction ~0.87.
+// The free field uses rho = 0.46 s, jitter +-0.1 s and shrinks the floes (eps = -1e-3): area fraction ~0.62, nobody
+// touches at the start, a few close neighbours (mm gaps) collide within the first steps, random speeds <= 0.5 m/s.
+//
+// Counters (per floe-step; "floe-step" = one floe advanced by one step):
+//   us_per_floe_step  CPU time of step() / (steps x floes) [us]
+//   contacts_per_floe 2 x (contact pairs) / floes, averaged over the timed steps: the mean number of contacts a
+//                     floe takes part in (floe-wall contacts included)
+//   candidates_per_floe  broad-phase candidate pairs / floes (after the timed steps)
+//   dt_ms             the time step [ms]
+//   *_ns              World::profile() stage times (wall clock) per floe-step [ns]: integrate (kicks + drift),
+//                     shapes (world vertices + boxes), broad, narrow_law (narrow phase + contact law + cache),
+//                     forcing (drift)
+//   narrow_only_ns    planar_overlap alone over the final state's candidate pairs, per floe [ns] (timed apart from
+//                     the steps, so the part of narrow_law that is geometry); ns_per_candidate: the same per pair
+#include <benchmark/benchmark.h>
+
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "contact/broad_phase.h"
+#include "dynamics/world.h"
+#include "test_support.h"
+
+using namespace polyfloe;
+using geometry::Vec2;
+
+namespace {
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+struct PackSpec {
+  double spacing = 9.0;   // lattice spacing s [m]
+  double jitter = 0.03;   // generator jitter, fraction of s
+  double rho = 0.56;      // circumradius of the 10-gon, fraction of s
+  int corners = 10;       // corners of that polygon
+  double eps = 2e-4;      // relative scaling about the generator (> 0: neighbours overlap)
+  double speed = 0.0;     // random initial speed, uniform in [0, speed] in a random direction [m/s]
+  bool walls = true;
+  bool shuffle = true;    // body order unrelated to position, as in a generated field (largest floe first)
+};
+
+struct Pack {
+  std::vector<dynamics::BodyDesc> bodies;  // floes, then walls
+  int floes = 0;
+  double area_fraction = 0.0;
+  double mean_vertices = 0.0;
+};
+
+// Keeps the part of `poly` where n.(x - p) <= 0.
+std::vector<Vec2> clip(const std::vector<Vec2>& poly, const Vec2& n, const Vec2& p) {
+  std::vector<Vec2> out;
+  const std::size_t m = poly.size();
+  for (std::size_t k = 0; k < m; ++k) {
+    const Vec2& a = poly[k];
+    const Vec2& b = poly[(k + 1) % m];
+    const double sa = n.dot(a - p), sb = n.dot(b - p);
+    if (sa <= 0.0) out.push_back(a);
+    if ((sa <= 0.0) != (sb <= 0.0)) out.push_back(a + sa / (sa - sb) * (b - a));
+  }
+  return out;
+}
+
+// Drops repeated and collinear vertices left by clipping (tolerances relative to the size).
+std::vector<Vec2> clean(std::vector<Vec2> v, double size) {
+  bool changed = true;
+  while (changed && v.size() >= 3) {
+    changed = false;
+    for (std::size_t k = 0; k < v.size() && v.size() >= 3; ++k) {
+      const std::size_t n = v.size();
+      const Vec2& a = v[(k + n - 1) % n];
+      const Vec2& b = v[k];
+      const Vec2& c = v[(k + 1) % n];
+      if ((b - a).norm() < 1e-6 * size || geometry::cross(b - a, c - b) < 1e-7 * size * size) {
+        v.erase(v.begin() + static_cast<std::ptrdiff_t>(k));
+        changed = true;
+      }
+    }
+  }
+  return v;
+}
+
+Pack make_pack(int n_target, const PackSpec& ps, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double s = ps.spacing;
+  const int nx = std::max(2, static_cast<int>(std::lround(std::sqrt(static_cast<double>(n_target)))));
+  const int ny = std::max(2, static_cast<int>(std::lround(static_cast<double>(n_target) / nx)));
+  const double lx = nx * s, ly = ny * s;
+  std::vector<Vec2> gen(static_cast<std::size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      gen[static_cast<std::size_t>(j) * nx + i] =
+          Vec2{(i + 0.5) * s, (j + 0.5) * s} + ps.jitter * s * Vec2{2.0 * u(rng) - 1.0, 2.0 * u(rng) - 1.0};
+
+  std::vector<std::vector<Vec2>> polys;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const Vec2 g = gen[static_cast<std::size_t>(j) * nx + i];
+      std::vector<Vec2> poly;
+      const double phase = 2.0 * std::numbers::pi * u(rng);
+      for (int k = 0; k < ps.corners; ++k) {
+        const double a = phase + 2.0 * std::numbers::pi * (k + 0.35 * (u(rng) - 0.5)) / ps.corners;
+        poly.push_back(g + ps.rho * s * Vec2{std::cos(a), std::sin(a)});
+      }
+      for (int dj = -2; dj <= 2; ++dj)
+        for (int di = -2; di <= 2; ++di) {
+          const int ii = i + di, jj = j + dj;
+          if ((di == 0 && dj == 0) || ii < 0 || jj < 0 || ii >= nx || jj >= ny) continue;
+          const Vec2 h = gen[static_cast<std::size_t>(jj) * nx + ii];
+          poly = clip(poly, h - g, 0.5 * (g + h));
+        }
+      poly = clip(poly, {-1.0, 0.0}, {0.0, 0.0});
+      poly = clip(poly, {1.0, 0.0}, {lx, 0.0});
+      poly = clip(poly, {0.0, -1.0}, {0.0, 0.0});
+      poly = clip(poly, {0.0, 1.0}, {0.0, ly});
+      for (Vec2& p : poly) p = g + (1.0 + ps.eps) * (p - g);
+      poly = clean(std::move(poly), s);
+      if (poly.size() < 3 || !geometry::convexity_error(poly).empty()) continue;  // never seen; skip rather than fail
+      polys.push_back(std::move(poly));
+    }
+  }
+  // Shuffled before the shapes are allocated, so that shapes lie in memory in body order, as in a real field.
+  if (ps.shuffle) std::shuffle(polys.begin(), polys.end(), rng);
+
+  Pack pack;
+  double ice_area = 0.0, vertices = 0.0;
+  dynamics::BodyId id = 1;
+  for (const auto& poly : polys) {
+    dynamics::BodyDesc d;
+    d.id = id++;
+    Vec2 centroid;
+    d.shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(poly, &centroid));
+    d.position = centroid;
+    d.thickness = 1.0;
+    const double ang = 2.0 * std::numbers::pi * u(rng);
+    d.velocity = ps.speed * u(rng) * Vec2{std::cos(ang), std::sin(ang)};
+    ice_area += d.shape->area();
+    vertices += d.shape->size();
+    pack.bodies.push_back(std::move(d));
+  }
+  pack.floes = static_cast<int>(pack.bodies.size());
+  pack.area_fraction = ice_area / (lx * ly);
+  pack.mean_vertices = vertices / pack.floes;
+  if (ps.walls) {
+    const double t = 20.0;  // wall thickness [m]
+    auto wall = [&](double x0, double y0, double x1, double y1) {
+      dynamics::BodyDesc d;
+      d.id = id++;
+      d.motion = dynamics::Motion::fixed;
+      d.shape = tsupport::shape_of({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
+      d.position = {0.5 * (x0 + x1), 0.5 * (y0 + y1)};
+      d.thickness = 1.0;
+      pack.bodies.push_back(std::move(d));
+    };
+    wall(-t, -t, lx + t, 0.0);        // bottom
+    wall(-t, ly, lx + t, ly + t);     // top
+    wall(-t, 0.0, 0.0, ly);           // left
+    wall(lx, 0.0, lx + t, ly);        // right
+  }
+  return pack;
+}
+
+enum class Kind { dense, dense_sorted, free };
+
+const Pack& pack_for(int n, Kind kind) {
+  // Generated once per (N, kind): repetitions rebuild the World from the same bodies but not the geometry.
+  static std::map<std::pair<int, Kind>, Pack> cache;
+  auto it = cache.find({n, kind});
+  if (it != cache.end()) return it->second;
+  PackSpec ps;
+  if (kind == Kind::dense_sorted) ps.shuffle = false;
+  if (kind == Kind::free) {
+    ps.rho = 0.46;
+    ps.jitter = 0.1;
+    ps.eps = -1e-3;
+    ps.speed = 0.5;
+    ps.walls = false;
+  }
+  return cache.emplace(std::pair{n, kind}, make_pack(n, ps, kind == Kind::free ? 11u : 7u)).first->second;
+}
+
+void run(benchmark::State& state, Kind kind) {
+  const int n = static_cast<int>(state.range(0));
+  const bool dense = kind != Kind::free;
+  const Pack& pack = pack_for(n, kind);
+  dynamics::WorldSettings ws;
+  ws.drift.current = {0.2, 0.05};
+  ws.drift.wind = {8.0, 6.0};
+  dynamics::World world(ws);
+  for (const auto& d : pack.bodies) world.add_body(d);
+  const double dt = world.shortest_contact_duration(1.0) / 40.0;
+  world.compute_forces(0.0);
+  for (int k = 0; k < 2; ++k) world.step(dt);  // warm: contact cache filled, scratch vectors sized
+  if (dense && 2.0 * static_cast<double>(world.contacts().size()) / pack.floes < 2.0) {
+    state.SkipWithError("the dense pack has fewer than 2 contacts per floe at the start");
+    return;
+  }
+
+  const dynamics::StepProfile p0 = world.profile();
+  double contact_pairs = 0.0;
+  const double cpu0 = thread_cpu_seconds();
+  for (auto _ : state) {
+    world.step(dt);
+    contact_pairs += static_cast<double>(world.contacts().size());
+  }
+  const double cpu = thread_cpu_seconds() - cpu0;
+  const dynamics::StepProfile p1 = world.profile();
+  if (!(world.max_speed() < 10.0)) {
+    state.SkipWithError("the pack became unstable during timing");
+    return;
+  }
+
+  // Broad-phase candidates at the final state (outside timing).
+  std::vector<geometry::Aabb> boxes;
+  std::vector<std::uint8_t> dyn;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    const auto v = world.world_vertices(static_cast<int>(i));
+    geometry::Aabb b{v[0], v[0]};
+    for (const Vec2& q : v) {
+      b.lo = b.lo.cwiseMin(q);
+      b.hi = b.hi.cwiseMax(q);
+    }
+    boxes.push_back(b);
+    dyn.push_back(world.motion(static_cast<int>(i)) == dynamics::Motion::dynamic ? 1 : 0);
+  }
+  std::vector<contact::CandidatePair> pairs;
+  contact::GridBroadPhase(ws.broad_phase_cell).find_pairs(boxes, dyn, pairs);
+  // The narrow phase alone over those candidates, in the World's storage order (outside the step's timing): what
+  // part of narrow_law is geometry.
+  const int passes = std::max(1, 3000000 / std::max<int>(1, static_cast<int>(pairs.size())));
+  std::int64_t hits = 0;
+  const double np0 = thread_cpu_seconds();
+  for (int r = 0; r < passes; ++r) {
+    for (const auto& cp : pairs) {
+      contact::PlanarContact g;
+      hits += contact::planar_overlap(world.world_vertices(cp.a), world.world_vertices(cp.b), g);
+      benchmark::DoNotOptimize(g);
+    }
+  }
+  const double narrow_only = (thread_cpu_seconds() - np0) / passes;
+  benchmark::DoNotOptimize(hits);
+
+  const double floe_steps = static_cast<double>(state.iterations()) * pack.floes;
+  state.SetItemsProcessed(static_cast<std::int64_t>(floe_steps));
+  state.counters["floes"] = pack.floes;
+  state.counters["dt_ms"] = 1e3 * dt;
+  state.counters["area_fraction"] = pack.area_fraction;
+  state.counters["vertices"] = pack.mean_vertices;
+  state.counters["us_per_floe_step"] = 1e6 * cpu / floe_steps;
+  state.counters["contacts_per_floe"] = 2.0 * contact_pairs / floe_steps;
+  state.counters["candidates_per_floe"] = static_cast<double>(pairs.size()) / pack.floes;
+  state.counters["integrate_ns"] = 1e9 * (p1.integrate - p0.integrate) / floe_steps;
+  state.counters["shapes_ns"] = 1e9 * (p1.shapes - p0.shapes) / floe_steps;
+  state.counters["broad_ns"] = 1e9 * (p1.broad - p0.broad) / floe_steps;
+  state.counters["narrow_law_ns"] = 1e9 * (p1.narrow_and_law - p0.narrow_and_law) / floe_steps;
+  state.counters["forcing_ns"] = 1e9 * (p1.forcing - p0.forcing) / floe_steps;
+  state.counters["narrow_only_ns"] = 1e9 * narrow_only / pack.floes;
+  state.counters["ns_per_candidate"] = pairs.empty() ? 0.0 : 1e9 * narrow_only / static_cast<double>(pairs.size());
+}
+
+void BM_DensePack(benchmark::State& state) { run(state, Kind::dense); }
+void BM_DensePackSorted(benchmark::State& state) { run(state, Kind::dense_sorted); }
+void BM_FreeDrift(benchmark::State& state) { run(state, Kind::free); }
+
+}  // namespace
+
+// Fixed step counts (the set-up is not repeated to calibrate): about 1.5 million floe-steps per case.
+BENCHMARK(BM_DensePack)->Arg(1500)->Iterations(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePack)->Arg(15000)->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePack)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackSorted)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FreeDrift)->Arg(1500)->Iterations(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FreeDrift)->Arg(15000)->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FreeDrift)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
