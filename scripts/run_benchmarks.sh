@@ -24,7 +24,7 @@ while [[ $# -gt 0 ]]; do
     -b) BUILD_DIR="$2"; shift 2 ;;
     -o) OUT_DIR="$2"; shift 2 ;;
     -r) REPS="$2"; shift 2 ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
     --) shift; break ;;
     *) echo "run_benchmarks.sh: unknown argument '$1' (try -h)" >&2; exit 2 ;;
   esac

@@ -53,6 +53,7 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   // Work relative to A's first vertex: keeps precision for floes far from the origin.
   const Vec2 origin = a[0];
 
+  int j_near = 0;  // B's vertex nearest A along the axis: clipping starts with the edges around it
   // Quick rejection along the line between the vertex means: most broad-phase candidates that do not touch are
   // separated along it (touching counts as separated, as below).
   {
@@ -62,7 +63,13 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     const Vec2 axis = mb / nb - ma / na;
     double hi_a = -std::numeric_limits<double>::infinity(), lo_b = std::numeric_limits<double>::infinity();
     for (int i = 0; i < na; ++i) hi_a = std::max(hi_a, axis.dot(a[i] - origin));
-    for (int j = 0; j < nb; ++j) lo_b = std::min(lo_b, axis.dot(b[j] - origin));
+    for (int j = 0; j < nb; ++j) {
+      const double v = axis.dot(b[j] - origin);
+      if (v < lo_b) {
+        lo_b = v;
+        j_near = j;
+      }
+    }
     if (hi_a <= lo_b) return false;
   }
 
@@ -79,8 +86,10 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   auto b_normal = [&](int j) { return perp_right(b[j] - b[(j == 0) ? nb - 1 : j - 1]); };
 
   double s[kMaxClipped];
-  Vec2 b0 = b[nb - 1] - origin;
-  for (int j = 0; j < nb; ++j) {
+  // Clip by B's edges starting with the one that ends at j_near (they face A): the first cuts shrink the polygon
+  // to the overlap sliver, and a separated pair is usually rejected by the first edge.
+  Vec2 b0 = b[(j_near == 0) ? nb - 1 : j_near - 1] - origin;
+  for (int jj = 0, j = j_near; jj < nb; ++jj, j = (j + 1 == nb) ? 0 : j + 1) {
     const Vec2 b1 = b[j] - origin;
     const Vec2 nrm = perp_right(b1 - b0);  // outward normal of B's edge (b0 -> b1), unnormalised
     const double d = nrm.dot(b0);

@@ -1,5 +1,6 @@
 // Cost of the planar narrow phase, contact::planar_overlap: the whole test (does it overlap), the overlap polygon,
-// its area and centroid, the chord normal and the depth, per candidate pair, on one core.
+// its area and centroid, the chord normal, the depth (and whatever else planar_overlap fills in, such as the
+// depth-gradient terms), per candidate pair, on one core.
 //
 //   BM_PlanarOverlap/<n>    overlapping pairs of n-vertex random convex polygons: sizes log-uniform in 5-100 m
 //                           (each floe drawn independently), overlap (penetration along the approach direction)
@@ -15,8 +16,8 @@
 
 #include <time.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
