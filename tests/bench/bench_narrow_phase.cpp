@@ -29,17 +29,14 @@
 
 #include "contact/narrow_phase_planar.h"
 #include "test_support.h"
+#include "thread_clock.h"
 
 using namespace polyfloe;
 using geometry::Vec2;
 
 namespace {
 
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+using tsupport::thread_cpu_seconds;
 
 constexpr int kPairs = 4096;  // a power of two: the pair index is cycled with a mask
 

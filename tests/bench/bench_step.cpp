@@ -50,17 +50,14 @@
 #include "contact/broad_phase.h"
 #include "dynamics/world.h"
 #include "test_support.h"
+#include "thread_clock.h"
 
 using namespace polyfloe;
 using geometry::Vec2;
 
 namespace {
 
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+using tsupport::thread_cpu_seconds;
 
 struct PackSpec {
   double spacing = 9.0;   // lattice spacing s [m]
