@@ -47,7 +47,7 @@ void least_penetration(std::span<const Vec2> a, std::span<const Vec2> b, PlanarC
 
 }  // namespace
 
-bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out) {
+bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out, bool with_gradient) {
   const int na = static_cast<int>(a.size());
   const int nb = static_cast<int>(b.size());
   // Work relative to A's first vertex: keeps precision for floes far from the origin.
@@ -160,6 +160,7 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   out.chord = len;
   out.normal = chord / len;
   out.depth = out.area / len;
+  if (!with_gradient) return true;
   // Gradient terms: the moment of the ∂A part (averaged with minus the ∂B part) and the sliding crossings.
   double m_a = 0.0, m_b = 0.0;
   for (int k = 0; k < n; ++k) {

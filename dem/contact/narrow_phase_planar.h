@@ -55,10 +55,14 @@ struct DepthGradient {
   Vec2 grad_a{0.0, 0.0}, grad_b{0.0, 0.0};  // [-]
   double grad_wa = 0.0, grad_wb = 0.0;       // [m]
 };
+// `c` must come from planar_overlap(..., with_gradient = true).
 DepthGradient depth_gradient(const PlanarContact& c, const Vec2& x_a, const Vec2& x_b);
 
 // `a`, `b`: world-frame vertices, counter-clockwise, strictly convex, at most kMaxPolygonVertices each.
 // Returns false when the interiors do not overlap; touching (zero overlap area) counts as no contact.
-bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out);
+// `with_gradient`: also fill moment, ga, gb, ha, hb (30-50 ns more per overlapping pair; only the gradient force
+// model and depth_gradient() need them; otherwise they are left zero).
+bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out,
+                    bool with_gradient = false);
 
 }  // namespace polyfloe::contact

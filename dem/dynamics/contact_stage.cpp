@@ -20,8 +20,9 @@ void World::contact_forces(double dt) {
     // Orient every pair by id so the stored spring has one meaning whatever the index order.
     int a = cp.a, b = cp.b;
     if (id_[a] > id_[b]) std::swap(a, b);
+    const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
     contact::PlanarContact g;
-    if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g)) continue;
+    if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g, gradient)) continue;
 
     const Vec2 t = geometry::perp_left(g.normal);
     const Vec2 ra = g.point - pos_[a], rb = g.point - pos_[b];  // centroid relative to each body
@@ -30,7 +31,6 @@ void World::contact_forces(double dt) {
     const Vec2 v_rel = vb - va;
 
     const Vec2 da = -ra, db = -rb;  // body centres relative to the centroid
-    const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
     // Normal direction on b (per unit normal force) and its moment about b's centre, and the depth rate.
     Vec2 dir_b;
     double arm_b, rate;

@@ -130,7 +130,7 @@ TEST(NarrowPhase, DepthGradientMatchesFiniteDifferences) {
       return tsupport::transform(local, yaw, x);
     };
     PlanarContact c;
-    if (!contact::planar_overlap(place(a0, ca, ya, xa), place(b0, cb, yb, xb), c) || c.chord == 0.0) continue;
+    if (!contact::planar_overlap(place(a0, ca, ya, xa), place(b0, cb, yb, xb), c, true) || c.chord == 0.0) continue;
     auto depth = [&](const Vec2& pa, double ta, const Vec2& pb, double tb) {
       PlanarContact d;
       if (!contact::planar_overlap(place(a0, ca, ta, pa), place(b0, cb, tb, pb), d)) return 0.0;
