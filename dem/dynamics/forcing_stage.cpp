@@ -1,14 +1,86 @@
-// Stage: drift forces on every dynamic body (skin drag on the bottom, air drag on the top).
+// Stage: drift forces on every dynamic body - form drag on the submerged side faces, the drag moment, skin drag
+// on the bottom, air drag on the top, Coriolis - with the damping matrix the final half kick uses to treat them
+// semi-implicitly. Spatially uniform fields (and still water, calm air) are sampled once per step.
 #include "dynamics/world.h"
 
 namespace polyfloe::dynamics {
 
-void World::drift_forces() {
+namespace {
+
+// A field as the stage sees it: null, or uniform this step (value), or sampled at points.
+struct FieldNow {
+  const forcing::VelocityField* field = nullptr;
+  bool uniform = true;
+  Vec2 value{0.0, 0.0};
+  FieldNow(const forcing::VelocityField* f, double t) : field(f), uniform(!f || f->uniform_in_space()) {
+    if (f && uniform) value = f->at({0.0, 0.0, 0.0}, t);
+  }
+};
+
+}  // namespace
+
+void World::drift_forces(double t) {
   const forcing::DriftSettings& s = settings_.drift;
-  if (!s.skin_drag && !s.air_drag) return;
   const std::size_t n = size();
-  for (std::size_t i = 0; i < n; ++i)
-    if (is_dynamic_[i]) force_[i] += forcing::drift_force(s, plan_area_[i], vel_eval_[i]);
+  drift_load_.assign(n, forcing::DriftLoad{});
+  if (!s.any()) return;
+
+  const FieldNow ocean(s.ocean.get(), t), wind(s.wind.get(), t);
+  const bool sides = s.form_drag || s.moment_drag;
+  const bool surfaces = s.skin_drag || s.air_drag;
+  const bool semi_implicit = s.treatment == forcing::DriftTreatment::semi_implicit;
+
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!is_dynamic_[i]) continue;
+    const std::span<const Vec2> verts = world_vertices(static_cast<int>(i));
+    const std::size_t nv = verts.size();
+    const forcing::FloeMotion m{pos_[i], vel_eval_[i], omega_eval_[i]};
+    forcing::DriftLoad load;
+    if (sides) {
+      double omega_water = 0.0;  // [rad/s]
+      if (ocean.uniform) {
+        if (s.form_drag)
+          forcing::add_form_drag(load, s.form_drag_coefficient, s.water_density, draft_[i], m, verts, ocean.value);
+      } else {
+        const std::span<forcing::Vec3> pts{side_points_.data(), nv};
+        const std::span<Vec2> water{side_water_.data(), nv};
+        forcing::side_sample_points(verts, draft_[i], pts);
+        ocean.field->sample(t, pts, water);
+        if (s.form_drag)
+          forcing::add_form_drag(load, s.form_drag_coefficient, s.water_density, draft_[i], m, verts, water);
+        omega_water = forcing::water_rotation_rate(verts, water, plan_area_[i]);
+      }
+      if (s.moment_drag)
+        forcing::add_moment_drag(load, s.moment_drag_coefficient, s.water_density, side_area_[i],
+                                 equivalent_radius_[i], m.omega - omega_water);
+    }
+    if (surfaces) {
+      // Quadrature points: body-frame levers turned into the world frame.
+      const int q0 = quad_off_[i];
+      const std::size_t nq = static_cast<std::size_t>(quad_off_[i + 1] - q0);
+      const std::span<Vec2> levers{quad_lever_.data(), nq};
+      for (std::size_t q = 0; q < nq; ++q)
+        levers[q] = geometry::rotate(quad_local_[q0 + q], rotation_[i].x(), rotation_[i].y());
+      const std::span<const double> weights{quad_weight_.data() + q0, nq};
+      auto surface = [&](const FieldNow& fluid, double z, double coefficient, double rho) {
+        if (fluid.uniform) {
+          forcing::add_surface_drag(load, coefficient, rho, m, levers, weights, fluid.value);
+          return;
+        }
+        const std::span<forcing::Vec3> pts{quad_points_.data(), nq};
+        const std::span<Vec2> u{quad_fluid_.data(), nq};
+        for (std::size_t q = 0; q < nq; ++q) pts[q] = {pos_[i].x() + levers[q].x(), pos_[i].y() + levers[q].y(), z};
+        fluid.field->sample(t, pts, u);
+        forcing::add_surface_drag(load, coefficient, rho, m, levers, weights, u);
+      };
+      if (s.skin_drag) surface(ocean, -draft_[i], s.skin_drag_coefficient, s.water_density);
+      if (s.air_drag) surface(wind, thickness_[i] - draft_[i], s.air_drag_coefficient, s.air_density);
+    }
+    if (s.coriolis) forcing::add_coriolis(load, mass_[i], s.coriolis_parameter(pos_[i].y()), m.velocity);
+    force_[i] += load.force;
+    torque_[i] += load.torque;
+    if (semi_implicit) drift_load_[i] = load;
+  }
 }
 
 }  // namespace polyfloe::dynamics

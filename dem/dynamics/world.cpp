@@ -31,6 +31,31 @@ int World::add_body(const BodyDesc& d) {
   mass_.push_back(pm.mass);
   inertia_.push_back(pm.inertia_z);
   plan_area_.push_back(d.shape->area());
+  // Floating at equilibrium; a body denser than water rests fully submerged (draft = thickness).
+  const double rho_w = settings_.drift.water_density;
+  const double draft = std::min(d.thickness, geometry::floating_draft(d.thickness, d.density, rho_w));
+  draft_.push_back(draft);
+  side_area_.push_back(d.shape->perimeter() * draft);
+  equivalent_radius_.push_back(d.shape->equivalent_radius());
+  {
+    std::vector<forcing::QuadraturePoint> q;
+    forcing::polygon_quadrature(d.shape->vertices(), settings_.drift.quadrature, q);
+    for (const forcing::QuadraturePoint& p : q) {
+      quad_local_.push_back(p.point);
+      quad_weight_.push_back(p.weight);
+    }
+    quad_off_.push_back(quad_off_.back() + static_cast<int>(q.size()));
+    const std::size_t nq = q.size(), nv = d.shape->size();
+    if (quad_points_.size() < nq) {
+      quad_points_.resize(nq);
+      quad_lever_.resize(nq);
+      quad_fluid_.resize(nq);
+    }
+    if (side_points_.size() < nv) {
+      side_points_.resize(nv);
+      side_water_.resize(nv);
+    }
+  }
   // Walls and plates are flat and immovable for the contact law: infinite radius and mass.
   radius_.push_back(dyn ? d.shape->equivalent_radius() : contact::kInfinite);
   motion_.push_back(d.motion);
@@ -48,6 +73,7 @@ int World::add_body(const BodyDesc& d) {
   vert_off_.push_back(vert_off_.back() + d.shape->size());
   world_xy_.resize(static_cast<std::size_t>(vert_off_.back()));
   boxes_.emplace_back();
+  rotation_.emplace_back(1.0, 0.0);
   update_shape(i);
   forces_ready_ = false;
   return i;
@@ -84,7 +110,7 @@ void World::step(double dt) {
   profile_.shapes += std::chrono::duration<double>(t2 - t1).count();
   compute_forces(dt);
   auto t3 = clock::now();
-  kick(0.5 * dt);
+  kick_semi_implicit(0.5 * dt);
   profile_.integrate += std::chrono::duration<double>(clock::now() - t3).count();
   time_ += dt;
   ++steps_;
@@ -109,7 +135,7 @@ void World::compute_forces(double dt) {
     torque_[i] = ext_torque_[i];
   }
   auto t0 = clock::now();
-  drift_forces();
+  drift_forces(time_ + dt);
   auto t1 = clock::now();
   contact_forces(dt);
   profile_.forcing += std::chrono::duration<double>(t1 - t0).count();

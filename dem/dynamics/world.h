@@ -74,6 +74,7 @@ class World {
   int index_of(BodyId id) const;  // -1 if absent
   const geometry::ConvexPolygon& shape(int i) const { return *shape_[i]; }
   double thickness(int i) const { return thickness_[i]; }   // [m]
+  double draft(int i) const { return draft_[i]; }           // floating draft h rho_ice / rho_w, at most h [m]
   double mass(int i) const { return mass_[i]; }             // [kg] (of the prism, also for walls)
   double inertia(int i) const { return inertia_[i]; }       // [kg m^2]
   Motion motion(int i) const { return motion_[i]; }
@@ -117,11 +118,12 @@ class World {
 
  private:
   void kick(double half_dt);
+  void kick_semi_implicit(double half_dt);
   void drift(double dt);
   void update_shapes();
   void update_shape(int i);
   void contact_forces(double dt);
-  void drift_forces();
+  void drift_forces(double t);
 
   WorldSettings settings_;
   contact::ContactLaw law_;
@@ -141,15 +143,25 @@ class World {
   std::unordered_map<BodyId, int> index_;
   std::vector<std::shared_ptr<const geometry::ConvexPolygon>> shape_;
   std::vector<double> thickness_, mass_, inertia_, radius_, plan_area_;
+  std::vector<double> draft_, side_area_, equivalent_radius_;  // [m], submerged side area [m^2], sqrt(A/pi) [m]
+  std::vector<int> quad_off_{0};      // body i's bottom/top quadrature points: quad_off_[i] .. quad_off_[i+1]-1
+  std::vector<Vec2> quad_local_;      // body-frame lever of each point from the centroid [m]
+  std::vector<double> quad_weight_;   // area carried [m^2]
+  // drift: the load of the last evaluation with its damping matrix (drag with frozen speed factors, Coriolis),
+  // for the semi-implicit kick
+  std::vector<forcing::DriftLoad> drift_load_;
   std::vector<Motion> motion_;
   std::vector<std::uint8_t> is_dynamic_;
   // world-frame shapes, refreshed after each drift
   std::vector<int> vert_off_{0};
   std::vector<Vec2> world_xy_;
   std::vector<geometry::Aabb> boxes_;
+  std::vector<Vec2> rotation_;  // (cos yaw, sin yaw) of the world-frame shape
   // scratch
   std::vector<contact::CandidatePair> pairs_;
   std::vector<ContactRecord> contacts_;
+  std::vector<forcing::Vec3> side_points_, quad_points_;
+  std::vector<Vec2> side_water_, quad_lever_, quad_fluid_;
   double worst_q2_ = 0.0;  // max over contacts of v^2 (k_n/m*)^4: the shortest contact has the largest
   double worst_v2_ = 0.0;
   int worst_a_ = -1, worst_b_ = -1;

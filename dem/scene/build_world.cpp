@@ -64,8 +64,29 @@ void add(dynamics::World& world, const BodyDesc& desc, const std::string& source
 
 double reference_speed(const Scene& scene) {
   if (scene.time.reference_speed) return *scene.time.reference_speed;
-  const double drift = forcing::free_drift_velocity(scene.world.drift).norm();  // [m/s]
-  return std::isfinite(drift) ? std::max(1.0, drift) : 1.0;
+  // The fastest of the current, and the skin/air free drift, at t = 0 at the explicit bodies and over the floe
+  // field's region (5 x 5 points): impacts rarely exceed the speed floes drift at.
+  const forcing::DriftSettings& d = scene.world.drift;
+  std::vector<Vec2> where;
+  for (const BodySpec& b : scene.bodies) where.push_back(b.position);
+  if (const auto& f = scene.floe_field) {
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j)
+        where.push_back(f->region_min + (f->region_max - f->region_min).cwiseProduct(Vec2(i / 4.0, j / 4.0)));
+  }
+  if (where.empty()) where.emplace_back(0.0, 0.0);
+  double speed = 1.0;  // [m/s]
+  for (const Vec2& p : where) {
+    try {
+      const Vec2 current = d.ocean ? d.ocean->at({p.x(), p.y(), 0.0}, 0.0) : Vec2{0.0, 0.0};
+      const Vec2 wind = d.wind ? d.wind->at({p.x(), p.y(), 0.0}, 0.0) : Vec2{0.0, 0.0};
+      const double v = std::max(current.norm(), forcing::free_drift_velocity(d, current, wind).norm());
+      if (std::isfinite(v)) speed = std::max(speed, v);
+    } catch (const forcing::FieldError&) {
+      // outside the field's domain: that point does not count
+    }
+  }
+  return speed;
 }
 
 double time_step(const Scene& scene, const dynamics::World& world) {

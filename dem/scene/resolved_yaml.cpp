@@ -10,6 +10,46 @@ namespace polyfloe::scene {
 using detail::fmt;
 using detail::quoted;
 
+namespace {
+
+// A field as a one-line YAML flow map with the keys of its kind.
+std::string field_yaml(const forcing::FieldSpec& f) {
+  using forcing::FieldKind;
+  std::ostringstream o;
+  o << "{type: " << forcing::to_string(f.kind);
+  switch (f.kind) {
+    case FieldKind::uniform: o << ", velocity: " << fmt(f.velocity); break;
+    case FieldKind::linear:
+      o << ", velocity: " << fmt(f.velocity) << ", origin: " << fmt(f.origin) << ", gradient: ["
+        << fmt(Vec2(f.gradient.row(0).transpose())) << ", " << fmt(Vec2(f.gradient.row(1).transpose()))
+        << "], depth_gradient: " << fmt(f.depth_gradient);
+      break;
+    case FieldKind::solid_body:
+      o << ", centre: " << fmt(f.origin) << ", angular_velocity: " << fmt(f.angular_velocity)
+        << ", velocity: " << fmt(f.velocity);
+      break;
+    case FieldKind::rankine:
+      o << ", centre: " << fmt(f.origin) << ", core_radius: " << fmt(f.core_radius)
+        << ", max_speed: " << fmt(f.max_speed) << ", velocity: " << fmt(f.velocity);
+      break;
+    case FieldKind::tidal:
+      o << ", velocity: " << fmt(f.velocity) << ", amplitude: " << fmt(f.amplitude) << ", period: " << fmt(f.period)
+        << ", phase: " << fmt(f.phase);
+      break;
+    case FieldKind::time_series:
+      o << ", times: [";
+      for (std::size_t i = 0; i < f.times.size(); ++i) o << (i ? ", " : "") << fmt(f.times[i]);
+      o << "], velocities: [";
+      for (std::size_t i = 0; i < f.values.size(); ++i) o << (i ? ", " : "") << fmt(f.values[i]);
+      o << "], outside: " << forcing::to_string(f.outside);
+      break;
+  }
+  o << "}";
+  return o.str();
+}
+
+}  // namespace
+
 std::string resolved_yaml(const Scene& s) {
   std::ostringstream o;
   auto opt = [](const std::optional<double>& x) { return x ? fmt(*x) : std::string("auto"); };
@@ -43,17 +83,24 @@ std::string resolved_yaml(const Scene& s) {
     << "  broad_phase_cell: "
     << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n";
   const forcing::DriftSettings& d = s.world.drift;
+  auto term = [&](bool enabled, double c) {
+    return std::string("{enabled: ") + on(enabled) + ", coefficient: " + fmt(c) + "}";
+  };
   o << "forcing:\n"
+    << "  treatment: " << forcing::to_string(d.treatment) << "  # drag and Coriolis in the step\n"
+    << "  quadrature: " << forcing::to_string(d.quadrature) << "  # bottom and top drag integrals\n"
     << "  ocean:\n"
     << "    density: " << fmt(d.water_density) << "  # [kg/m^3]\n"
-    << "    current: " << fmt(d.current) << "  # [m/s]\n"
-    << "    skin_drag: {enabled: " << on(d.skin_drag) << ", coefficient: " << fmt(d.skin_drag_coefficient)
-    << "}  # c_w [-]\n"
+    << "    field: " << field_yaml(s.ocean_field) << "  # [m], [m/s], [1/s], [s]\n"
+    << "    form_drag: " << term(d.form_drag, d.form_drag_coefficient) << "  # C_d^F [-]\n"
+    << "    moment_drag: " << term(d.moment_drag, d.moment_drag_coefficient) << "  # C_d^M [-]\n"
+    << "    skin_drag: " << term(d.skin_drag, d.skin_drag_coefficient) << "  # c_w [-]\n"
     << "  air:\n"
     << "    density: " << fmt(d.air_density) << "  # [kg/m^3]\n"
-    << "    wind: " << fmt(d.wind) << "  # [m/s]\n"
-    << "    drag: {enabled: " << on(d.air_drag) << ", coefficient: " << fmt(d.air_drag_coefficient)
-    << "}  # c_a [-]\n";
+    << "    field: " << field_yaml(s.wind_field) << "\n"
+    << "    drag: " << term(d.air_drag, d.air_drag_coefficient) << "  # c_a [-]\n"
+    << "  coriolis: {enabled: " << on(d.coriolis) << ", latitude: " << fmt(d.latitude)
+    << ", beta_plane: " << on(d.beta_plane) << ", reference_y: " << fmt(d.reference_y) << "}  # [deg], [m]\n";
   if (s.bodies.empty()) o << "floes: []\n";
   else o << "floes:\n";
   for (const BodySpec& b : s.bodies) {

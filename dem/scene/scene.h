@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dynamics/world.h"
+#include "forcing/analytic_fields.h"
 
 namespace polyfloe::scene {
 
@@ -93,6 +94,8 @@ struct Scene {
   OutputSettings output;
   double ice_density = 920.0;  // [kg/m^3]
   dynamics::WorldSettings world;  // contact law + drift forcing + broad phase
+  forcing::FieldSpec ocean_field;  // what world.drift.ocean was built from (default: still water)
+  forcing::FieldSpec wind_field;   // what world.drift.wind was built from (default: calm)
   std::vector<BodySpec> bodies;
   std::optional<FloeFieldSpec> floe_field;
   std::optional<ChannelSpec> channel;

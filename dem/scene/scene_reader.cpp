@@ -1,6 +1,4 @@
-// The scene reader is a small schema walker: a MapReader wraps one YAML map, its typed getters read a key (leaving the
-// default in place when it is absent) and record it as known, and finish() reports any key nobody asked for. The
-// schema itself is the sequence of getter calls in read_*() below, one function per block.
+// The scene schema, one read_*() function per block, on the schema walker of schema.h; --set overrides.
 #include "scene/scene_reader.h"
 
 #include <yaml-cpp/yaml.h>
@@ -22,6 +20,7 @@
 #include "contact/narrow_phase_planar.h"
 #include "geometry/polygon.h"
 #include "scene/channel.h"
+#include "scene/forcing_reader.h"
 #include "scene/yaml_format.h"
 
 namespace polyfloe::scene {
@@ -31,308 +30,8 @@ using detail::quoted;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using namespace detail;
 
-// An allowed interval of a number, with its unit for messages ("s", "m/s", "-").
-struct Range {
-  double lo = -kInf, hi = kInf;
-  bool lo_open = true, hi_open = true;
-  const char* unit = "-";
-  bool contains(double x) const {
-    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-  }
-  std::string text() const {
-    return std::string(lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]") + " [" + unit + "]";
-  }
-};
-Range any(const char* unit) { return {-kInf, kInf, true, true, unit}; }
-Range positive(const char* unit) { return {0.0, kInf, true, true, unit}; }
-Range at_least(double lo, const char* unit) { return {lo, kInf, false, true, unit}; }
-Range closed(double lo, double hi, const char* unit) { return {lo, hi, false, false, unit}; }
-
-// ---------------------------------------------------------------------------------------------------------------
-// Where things are
-
-// A value in the tree: its node, the node of its key (for marks of empty values), and its dotted path.
-struct Field {
-  YAML::Node value;
-  YAML::Node key;  // undefined for list items and the root
-  std::string path;
-};
-
-std::string join(const std::string& parent, const std::string& key) {
-  return parent.empty() ? key : parent + "." + key;
-}
-
-class Context {
- public:
-  explicit Context(std::string file) : file_(std::move(file)) {}
-
-  const std::string& file() const { return file_; }
-  void set_origin(const std::string& path, const std::string& override_key) { origin_[path] = override_key; }
-
-  // "--set KEY" when the value (or a block around it) came from an override, else "FILE:LINE:COL".
-  std::string where(const Field& f) const {
-    for (std::string p = f.path;; p = p.substr(0, p.rfind('.'))) {
-      if (auto it = origin_.find(p); it != origin_.end()) return "--set " + it->second;
-      if (p.find('.') == std::string::npos) break;
-    }
-    // An empty value's mark points past it; its key's mark is where the reader looks.
-    const YAML::Node& n = (f.value.IsDefined() && !f.value.IsNull()) || !f.key.IsDefined() ? f.value : f.key;
-    if (!n.IsDefined() || n.Mark().is_null()) return file_;
-    return file_ + ":" + std::to_string(n.Mark().line + 1) + ":" + std::to_string(n.Mark().column + 1);
-  }
-
-  [[noreturn]] void fail(const Field& f, const std::string& message) const {
-    throw SceneError(where(f) + ": key '" + f.path + "': " + message);
-  }
-
- private:
-  std::string file_;
-  std::map<std::string, std::string> origin_;  // tree path -> the --set key that wrote or created it
-};
-
-// What a node is, for "expected X, got Y".
-std::string describe(const YAML::Node& n) {
-  if (!n.IsDefined() || n.IsNull()) return "nothing";
-  if (n.IsMap()) return "a map";
-  if (n.IsSequence()) return "a list of " + std::to_string(n.size()) + " items";
-  if (n.Tag() == "!") return "the quoted string '" + n.Scalar() + "'";
-  return "'" + n.Scalar() + "'";
-}
-
-bool plain_scalar(const YAML::Node& n) { return n.IsDefined() && n.IsScalar() && n.Tag() != "!"; }
-
-// ---------------------------------------------------------------------------------------------------------------
-// Typed values
-
-bool non_finite_spelling(const std::string& s) {
-  std::string t = s;
-  if (!t.empty() && (t[0] == '+' || t[0] == '-')) t.erase(0, 1);
-  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return t == ".nan" || t == ".inf" || t == "nan" || t == "inf" || t == "infinity";
-}
-
-enum class NumberText { ok, not_a_number, non_finite };
-
-// Reads a plain YAML scalar as a double: decimal or exponent notation, optional sign; .nan/.inf are non-finite.
-NumberText parse_double(const std::string& s, double& x) {
-  if (non_finite_spelling(s)) return NumberText::non_finite;
-  const char* begin = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
-  const char* end = s.data() + s.size();
-  const auto res = std::from_chars(begin, end, x);
-  if (res.ec == std::errc::result_out_of_range) return NumberText::non_finite;
-  if (res.ec != std::errc() || res.ptr != end || begin == end) return NumberText::not_a_number;
-  return std::isfinite(x) ? NumberText::ok : NumberText::non_finite;
-}
-
-double to_number(const Context& ctx, const Field& f, const Range& r, const char* alternative = "") {
-  double x = 0.0;
-  const NumberText t = plain_scalar(f.value) ? parse_double(f.value.Scalar(), x) : NumberText::not_a_number;
-  if (t == NumberText::not_a_number)
-    ctx.fail(f, "expected a number [" + std::string(r.unit) + "]" + alternative + ", got " + describe(f.value));
-  if (t == NumberText::non_finite) ctx.fail(f, f.value.Scalar() + " is not a finite number");
-  if (!r.contains(x)) ctx.fail(f, f.value.Scalar() + " is outside the allowed range " + r.text());
-  return x;
-}
-
-long long to_integer(const Context& ctx, const Field& f, long long lo, long long hi) {
-  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-  if (!plain_scalar(f.value)) ctx.fail(f, "expected an integer in " + range + ", got " + describe(f.value));
-  const std::string& s = f.value.Scalar();
-  const char* begin = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
-  const char* end = s.data() + s.size();
-  long long x = 0;
-  const auto res = std::from_chars(begin, end, x);
-  if (res.ec != std::errc() || res.ptr != end || begin == end)
-    ctx.fail(f, "expected an integer in " + range + ", got " + describe(f.value));
-  if (x < lo || x > hi) ctx.fail(f, s + " is outside the allowed range " + range);
-  return x;
-}
-
-std::uint64_t to_unsigned64(const Context& ctx, const Field& f) {
-  const char* what = "expected a non-negative integer in [0, 2^64 - 1], got ";
-  if (!plain_scalar(f.value)) ctx.fail(f, what + describe(f.value));
-  const std::string& s = f.value.Scalar();
-  const char* begin = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
-  const char* end = s.data() + s.size();
-  std::uint64_t x = 0;
-  const auto res = std::from_chars(begin, end, x);
-  if (res.ec != std::errc() || res.ptr != end || begin == end) ctx.fail(f, what + describe(f.value));
-  return x;
-}
-
-bool to_bool(const Context& ctx, const Field& f) {
-  bool b = false;
-  if (!plain_scalar(f.value) || !YAML::convert<bool>::decode(f.value, b))
-    ctx.fail(f, "expected true or false, got " + describe(f.value));
-  return b;
-}
-
-// The items of a list, as Fields named PATH.0, PATH.1, ...
-std::vector<Field> list_items(const Context& ctx, const Field& f, const std::string& what) {
-  if (!f.value.IsSequence()) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
-  std::vector<Field> items;
-  for (std::size_t i = 0; i < f.value.size(); ++i)
-    items.push_back({f.value[i], YAML::Node(), join(f.path, std::to_string(i))});
-  return items;
-}
-
-Vec2 to_vec2(const Context& ctx, const Field& f, const Range& r) {
-  const std::string what = "a list of 2 numbers [x, y] [" + std::string(r.unit) + "]";
-  const std::vector<Field> items = list_items(ctx, f, what);
-  if (items.size() != 2) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
-  return {to_number(ctx, items[0], r), to_number(ctx, items[1], r)};
-}
-
-std::vector<Vec2> to_polygon(const Context& ctx, const Field& f) {
-  const std::string what = "a list of at least 3 points [[x, y], ...] [m]";
-  std::vector<Vec2> v;
-  for (const Field& item : list_items(ctx, f, what)) v.push_back(to_vec2(ctx, item, any("m")));
-  if (v.size() < 3) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
-  if (v.size() > static_cast<std::size_t>(contact::kMaxPolygonVertices))
-    ctx.fail(f, "a polygon may have at most " + std::to_string(contact::kMaxPolygonVertices) + " vertices, got " +
-                    std::to_string(v.size()));
-  if (const std::string err = geometry::convexity_error(v); !err.empty()) ctx.fail(f, err);
-  return v;
-}
-
-// ---------------------------------------------------------------------------------------------------------------
-// The schema walker
-
-class MapReader {
- public:
-  // `self` must be a map, or absent / empty (then every key keeps its default).
-  MapReader(const Context& ctx, Field self) : ctx_(ctx), self_(std::move(self)) {
-    if (!self_.value.IsDefined() || self_.value.IsNull()) return;
-    if (!self_.value.IsMap())
-      ctx_.fail(self_, "expected a block of keys (a map), got " + describe(self_.value));
-    for (auto it = self_.value.begin(); it != self_.value.end(); ++it) {
-      const YAML::Node key = it->first;
-      if (!key.IsScalar()) ctx_.fail({key, key, self_.path}, "keys must be plain names, got " + describe(key));
-      for (const Entry& e : entries_) {
-        if (e.name == key.Scalar())
-          ctx_.fail({key, key, join(self_.path, e.name)},
-                    "duplicate key (first given at " + ctx_.where({e.key, e.key, join(self_.path, e.name)}) + ")");
-      }
-      entries_.push_back({key.Scalar(), key, it->second, false});
-    }
-  }
-
-  const Field& self() const { return self_; }
-  const Context& context() const { return ctx_; }
-  bool has(const char* key) const {
-    return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.name == key; });
-  }
-
-  // Marks `key` as part of the schema and returns its value if given (a null value counts as given).
-  std::optional<Field> take(const char* key) {
-    if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
-    for (Entry& e : entries_) {
-      if (e.name == key) {
-        e.used = true;
-        return Field{e.value, e.key, join(self_.path, key)};
-      }
-    }
-    return std::nullopt;
-  }
-
-  // Typed getters: `out` keeps its default when the key is absent. They return whether the key was given.
-  bool number(const char* key, double& out, const Range& r) {
-    const auto f = take(key);
-    if (f) out = to_number(ctx_, *f, r);
-    return f.has_value();
-  }
-  // A number, or the word 'auto' (stored as empty).
-  bool number_or_auto(const char* key, std::optional<double>& out, const Range& r) {
-    const auto f = take(key);
-    if (!f) return false;
-    if (plain_scalar(f->value) && f->value.Scalar() == "auto") out.reset();
-    else out = to_number(ctx_, *f, r, " or 'auto'");
-    return true;
-  }
-  bool integer(const char* key, int& out, int lo, int hi) {
-    const auto f = take(key);
-    if (f) out = static_cast<int>(to_integer(ctx_, *f, lo, hi));
-    return f.has_value();
-  }
-  bool unsigned64(const char* key, std::uint64_t& out) {
-    const auto f = take(key);
-    if (f) out = to_unsigned64(ctx_, *f);
-    return f.has_value();
-  }
-  bool optional_unsigned64(const char* key, std::optional<std::uint64_t>& out) {
-    std::uint64_t x = 0;
-    if (!unsigned64(key, x)) return false;
-    out = x;
-    return true;
-  }
-  bool boolean(const char* key, bool& out) {
-    const auto f = take(key);
-    if (f) out = to_bool(ctx_, *f);
-    return f.has_value();
-  }
-  bool text(const char* key, std::string& out) {
-    const auto f = take(key);
-    if (!f) return false;
-    if (!f->value.IsScalar()) ctx_.fail(*f, "expected a text, got " + describe(f->value));
-    out = f->value.Scalar();
-    return true;
-  }
-  bool vec2(const char* key, Vec2& out, const char* unit) {
-    const auto f = take(key);
-    if (f) out = to_vec2(ctx_, *f, any(unit));
-    return f.has_value();
-  }
-  template <class E>
-  bool choice(const char* key, E& out, std::initializer_list<std::pair<const char*, E>> options) {
-    const auto f = take(key);
-    if (!f) return false;
-    std::string names;
-    for (const auto& [name, value] : options) {
-      if (plain_scalar(f->value) && f->value.Scalar() == name) {
-        out = value;
-        return true;
-      }
-      names += (names.empty() ? "" : ", ") + std::string(name);
-    }
-    ctx_.fail(*f, "expected one of " + names + ", got " + describe(f->value));
-  }
-  // A nested block (an empty reader when absent: its keys keep their defaults).
-  MapReader block(const char* key) {
-    const auto f = take(key);
-    return MapReader(ctx_, f ? *f : Field{YAML::Node(), YAML::Node(), join(self_.path, key)});
-  }
-  // A block that may be left out; absent or null ('key: null', '--set key=~') means none.
-  std::optional<MapReader> optional_block(const char* key) {
-    const auto f = take(key);
-    if (!f || f->value.IsNull()) return std::nullopt;
-    return MapReader(ctx_, *f);
-  }
-
-  // Every key given must have been asked for.
-  void finish() const {
-    for (const Entry& e : entries_) {
-      if (e.used || std::find(known_.begin(), known_.end(), e.name) != known_.end()) continue;
-      std::string allowed;
-      for (const std::string& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
-      const std::string in = self_.path.empty() ? "at the top level" : "in '" + self_.path + "'";
-      const Field f{e.key, e.key, join(self_.path, e.name)};
-      throw SceneError(ctx_.where(f) + ": unknown key '" + f.path + "'; allowed " + in + ": " + allowed);
-    }
-  }
-
- private:
-  struct Entry {
-    std::string name;
-    YAML::Node key, value;
-    bool used = false;
-  };
-  const Context& ctx_;
-  Field self_;
-  std::vector<Entry> entries_;
-  std::vector<std::string> known_;
-};
 
 // ---------------------------------------------------------------------------------------------------------------
 // The schema, one block per function
@@ -372,26 +71,6 @@ void read_contact(MapReader m, dynamics::WorldSettings& w) {
   if (w.broad_phase_cell > 0.0) cell = w.broad_phase_cell;
   m.number_or_auto("broad_phase_cell", cell, positive("m"));
   w.broad_phase_cell = cell.value_or(0.0);
-  m.finish();
-}
-
-void read_drag(MapReader m, bool& enabled, double& coefficient) {
-  m.boolean("enabled", enabled);
-  m.number("coefficient", coefficient, closed(0.0, 1.0, "-"));
-  m.finish();
-}
-
-void read_forcing(MapReader m, forcing::DriftSettings& d) {
-  MapReader ocean = m.block("ocean");
-  ocean.number("density", d.water_density, positive("kg/m^3"));
-  ocean.vec2("current", d.current, "m/s");
-  read_drag(ocean.block("skin_drag"), d.skin_drag, d.skin_drag_coefficient);
-  ocean.finish();
-  MapReader air = m.block("air");
-  air.number("density", d.air_density, positive("kg/m^3"));
-  air.vec2("wind", d.wind, "m/s");
-  read_drag(air.block("drag"), d.air_drag, d.air_drag_coefficient);
-  air.finish();
   m.finish();
 }
 
@@ -543,11 +222,12 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   read_output(top.block("output"), s.output);
   read_ice(top.block("ice"), s);
   read_contact(top.block("contact"), s.world);
-  read_forcing(top.block("forcing"), s.world.drift);
+  read_forcing(top.block("forcing"), s);
   if (auto f = top.take("floes")) read_floes(ctx, *f, s.bodies);
   if (auto m = top.optional_block("floe_field")) s.floe_field = read_floe_field(*m);
   if (auto m = top.optional_block("channel")) s.channel = read_channel(*m);
   top.finish();
+  check_forcing(ctx, top.self(), s);
 
   const bool dynamic_body = std::any_of(s.bodies.begin(), s.bodies.end(),
                                         [](const BodySpec& b) { return b.motion == dynamics::Motion::dynamic; });

@@ -49,6 +49,7 @@
 
 #include "contact/broad_phase.h"
 #include "dynamics/world.h"
+#include "forcing/analytic_fields.h"
 #include "test_support.h"
 #include "thread_clock.h"
 
@@ -215,8 +216,8 @@ void run(benchmark::State& state, Kind kind) {
   const bool dense = kind != Kind::free;
   const Pack& pack = pack_for(n, kind);
   dynamics::WorldSettings ws;
-  ws.drift.current = {0.2, 0.05};
-  ws.drift.wind = {8.0, 6.0};
+  ws.drift.ocean = forcing::make_field(forcing::FieldSpec::uniform({0.2, 0.05}));
+  ws.drift.wind = forcing::make_field(forcing::FieldSpec::uniform({8.0, 6.0}));
   dynamics::World world(ws);
   for (const auto& d : pack.bodies) world.add_body(d);
   const double dt = world.shortest_contact_duration(1.0) / 40.0;

@@ -40,6 +40,24 @@ bool starts_with(const std::string& s, const std::string& prefix) { return s.rfi
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // Every setting of two scenes, compared field by field.
+
+void expect_same_field(const forcing::FieldSpec& a, const forcing::FieldSpec& b) {
+  EXPECT_EQ(a.kind, b.kind);
+  EXPECT_EQ(a.velocity, b.velocity);
+  EXPECT_EQ(a.origin, b.origin);
+  EXPECT_EQ(a.gradient, b.gradient);
+  EXPECT_EQ(a.depth_gradient, b.depth_gradient);
+  EXPECT_EQ(a.angular_velocity, b.angular_velocity);
+  EXPECT_EQ(a.core_radius, b.core_radius);
+  EXPECT_EQ(a.max_speed, b.max_speed);
+  EXPECT_EQ(a.amplitude, b.amplitude);
+  EXPECT_EQ(a.period, b.period);
+  EXPECT_EQ(a.phase, b.phase);
+  EXPECT_EQ(a.times, b.times);
+  EXPECT_EQ(a.values, b.values);
+  EXPECT_EQ(a.outside, b.outside);
+}
+
 void expect_same_settings(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.time.duration, b.time.duration);
@@ -60,13 +78,23 @@ void expect_same_settings(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.world.broad_phase_cell, b.world.broad_phase_cell);
   const auto &da = a.world.drift, &db = b.world.drift;
   EXPECT_EQ(da.water_density, db.water_density);
-  EXPECT_EQ(da.current, db.current);
+  EXPECT_EQ(da.form_drag, db.form_drag);
+  EXPECT_EQ(da.form_drag_coefficient, db.form_drag_coefficient);
+  EXPECT_EQ(da.moment_drag, db.moment_drag);
+  EXPECT_EQ(da.moment_drag_coefficient, db.moment_drag_coefficient);
   EXPECT_EQ(da.skin_drag, db.skin_drag);
   EXPECT_EQ(da.skin_drag_coefficient, db.skin_drag_coefficient);
   EXPECT_EQ(da.air_density, db.air_density);
-  EXPECT_EQ(da.wind, db.wind);
   EXPECT_EQ(da.air_drag, db.air_drag);
   EXPECT_EQ(da.air_drag_coefficient, db.air_drag_coefficient);
+  EXPECT_EQ(da.quadrature, db.quadrature);
+  EXPECT_EQ(da.treatment, db.treatment);
+  EXPECT_EQ(da.coriolis, db.coriolis);
+  EXPECT_EQ(da.latitude, db.latitude);
+  EXPECT_EQ(da.beta_plane, db.beta_plane);
+  EXPECT_EQ(da.reference_y, db.reference_y);
+  expect_same_field(a.ocean_field, b.ocean_field);
+  expect_same_field(a.wind_field, b.wind_field);
   ASSERT_EQ(a.bodies.size(), b.bodies.size());
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {
     const BodySpec &x = a.bodies[i], &y = b.bodies[i];
@@ -156,8 +184,9 @@ TEST(SceneReader, ChannelSceneParses) {
   EXPECT_EQ(s.world.contact.poisson_ratio, 0.3);
   EXPECT_EQ(s.world.contact.restitution, 0.5);
   EXPECT_EQ(s.world.contact.friction, 0.3);
-  EXPECT_EQ(s.world.drift.current, Vec2(4.0, 0.0));
-  EXPECT_EQ(s.world.drift.wind, Vec2(20.0, 0.0));
+  EXPECT_EQ(s.ocean_field.kind, forcing::FieldKind::uniform);
+  EXPECT_EQ(s.ocean_field.velocity, Vec2(4.0, 0.0));
+  EXPECT_EQ(s.wind_field.velocity, Vec2(20.0, 0.0));
   EXPECT_EQ(s.world.drift.water_density, 1025.0);
   EXPECT_EQ(s.world.drift.air_density, 1.2);
   EXPECT_EQ(s.world.drift.skin_drag_coefficient, 0.0055);
@@ -372,7 +401,7 @@ TEST(SceneOverrides, AppliedBeforeValidation) {
   const Scene s = read_scene(kSceneDir + "channel.yaml",
                              {"forcing.ocean.current=[0.5,0]", "floe_field.concentration=0.6", "run.dt=1e-3",
                               "output.vtk=false", "name=renamed", "floe_field.size.exponent=1.6"});
-  EXPECT_EQ(s.world.drift.current, Vec2(0.5, 0.0));
+  EXPECT_EQ(s.ocean_field.velocity, Vec2(0.5, 0.0));
   EXPECT_EQ(s.floe_field->concentration, 0.6);
   EXPECT_EQ(s.floe_field->exponent, 1.6);
   EXPECT_EQ(s.time.dt, 1e-3);
@@ -503,7 +532,7 @@ TEST(BuildWorld, TwoFloes) {
 
 TEST(BuildWorld, ChannelSceneIdsWallsAndField) {
   const Scene s = read_scene(kSceneDir + "channel.yaml", {});
-  const double v = forcing::free_drift_velocity(s.world.drift).norm();
+  const double v = forcing::free_drift_velocity(s.world.drift, s.ocean_field.velocity, s.wind_field.velocity).norm();
   EXPECT_GT(v, 4.0);
   EXPECT_EQ(reference_speed(s), std::max(1.0, v));
   const dynamics::World w = build_world(s);

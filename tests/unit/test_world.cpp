@@ -6,8 +6,6 @@
 //   a free floe with no force keeps its velocity and angular velocity bit for bit, and moves by v t;
 //   fixed bodies never move (bit for bit), even when hit; kinematic bodies keep their prescribed velocity bit for
 //   bit whatever the contact forces on them, and move by v t;
-//   free drift under skin + air drag converges to u = (u_c + k u_a) / (1 + k), k = sqrt(rho_a c_a / (rho_w c_w))
-//   (forcing::free_drift_velocity and the same formula written out here), within 0.5 %;
 //   shortest_contact_duration = the Hertz duration of two of the lightest, smallest floes.
 #include <gtest/gtest.h>
 
@@ -28,7 +26,7 @@ namespace {
 
 dynamics::WorldSettings no_drift() {
   dynamics::WorldSettings ws;
-  ws.drift.skin_drag = ws.drift.air_drag = false;
+  ws.drift = forcing::DriftSettings::none();
   return ws;
 }
 
@@ -228,30 +226,3 @@ TEST(World, KinematicBodiesKeepTheirPrescribedMotion) {
   for (int k = 1; k <= 6; ++k) EXPECT_GT(w.velocities()[k].x(), 0.5) << "floe " << k << " was pushed";
 }
 
-TEST(World, FreeDriftConvergesToClosedForm) {
-  dynamics::WorldSettings ws;
-  ws.drift.skin_drag = ws.drift.air_drag = true;
-  ws.drift.current = {0.12, -0.05};
-  ws.drift.wind = {8.0, 6.0};
-  const double k = std::sqrt(ws.drift.air_density * ws.drift.air_drag_coefficient /
-                             (ws.drift.water_density * ws.drift.skin_drag_coefficient));
-  const Vec2 closed = (ws.drift.current + k * ws.drift.wind) / (1.0 + k);
-  const Vec2 lib = forcing::free_drift_velocity(ws.drift);
-  EXPECT_NEAR((lib - closed).norm(), 0.0, 1e-15);
-  dynamics::World w(ws);
-  // From rest, from ahead of the drift, and a thick floe (slower to respond): the same velocity.
-  w.add_body({.id = 1, .shape = rect(10, 10), .position = {0.0, 0.0}});
-  // (5 km apart: they never meet on the way.)
-  w.add_body({.id = 2, .shape = rect(10, 10), .position = {0.0, 5000.0}, .velocity = {1.0, 1.0}});
-  w.add_body({.id = 3, .shape = rect(10, 10), .position = {0.0, -5000.0}, .velocity = {-0.3, 0.2}, .thickness = 3.0});
-  const double dt = 1.0;  // the drag relaxation time is ~10^3 s here
-  for (int s = 0; s < 100000; ++s) w.step(dt);
-  for (int i = 0; i < 3; ++i) {
-    const Vec2 u = w.velocities()[i];
-    const double err = (u - closed).norm() / closed.norm();
-    std::printf("free drift, floe %d: u = (%.6f, %.6f) m/s, closed form (%.6f, %.6f), |error| / |u| = %.2e\n", i,
-                u.x(), u.y(), closed.x(), closed.y(), err);
-    EXPECT_LT(err, 5e-3) << "floe " << i;
-    EXPECT_TRUE(w.contacts().empty());
-  }
-}

@@ -108,7 +108,7 @@ dynamics::WorldSettings free_space(double mu, double e,
   ws.contact.force_model = model;
   ws.contact.friction = mu;
   ws.contact.restitution = e;
-  ws.drift.skin_drag = ws.drift.air_drag = false;
+  ws.drift = forcing::DriftSettings::none();
   return ws;
 }
 

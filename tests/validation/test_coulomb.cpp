@@ -50,7 +50,7 @@ Outcome push_along_wall(double ratio, double duration, double window) {
   dynamics::WorldSettings ws;
   ws.contact.friction = kMu;
   ws.contact.restitution = 0.5;
-  ws.drift.skin_drag = ws.drift.air_drag = false;
+  ws.drift = forcing::DriftSettings::none();
   dynamics::World w(ws);
 
   const double e_star = ws.contact.youngs_modulus / (2.0 * (1.0 - ws.contact.poisson_ratio * ws.contact.poisson_ratio));

@@ -22,7 +22,7 @@ double measured_restitution(double e, double v, contact::DampingModel model, dou
   ws.contact.friction = 0.0;
   ws.contact.damping = model;
   ws.contact.reference_speed = reference_speed > 0.0 ? reference_speed : v;
-  ws.drift.skin_drag = ws.drift.air_drag = false;
+  ws.drift = forcing::DriftSettings::none();
   dynamics::World w(ws);
   auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
   dynamics::BodyDesc a{.id = 1, .shape = sq, .position = {-5.0, 0.0}, .velocity = {0.5 * v, 0.0}};

@@ -1,0 +1,53 @@
+// Analytic velocity fields: uniform, linear (shear, strain, depth shear), solid-body and Rankine vortices, a tidal
+// (time-periodic) uniform flow and a piecewise-linear time series. A FieldSpec is plain data (what a scene says);
+// make_field() turns a valid one into a VelocityField.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "forcing/field.h"
+
+namespace polyfloe::forcing {
+
+enum class FieldKind { uniform, linear, solid_body, rankine, tidal, time_series };
+// What a time series does outside [times.front(), times.back()].
+enum class TimeBoundary { clamp, cyclic, error };
+
+std::string_view to_string(FieldKind k);
+std::string_view to_string(TimeBoundary b);
+
+struct FieldSpec {
+  FieldKind kind = FieldKind::uniform;
+  // uniform: the velocity; linear: the velocity at `origin`; vortices: a uniform background added to the swirl;
+  // tidal: the mean flow [m/s]
+  Vec2 velocity{0.0, 0.0};
+  Vec2 origin{0.0, 0.0};                                  // linear: reference point; vortices: centre [m]
+  Eigen::Matrix2d gradient = Eigen::Matrix2d::Zero();     // linear: [[du/dx, du/dy], [dv/dx, dv/dy]] [1/s]
+  Vec2 depth_gradient{0.0, 0.0};                          // linear: [du/dz, dv/dz] [1/s]
+  double angular_velocity = 0.0;                          // solid_body: rotation rate, counter-clockwise > 0 [rad/s]
+  double core_radius = 0.0;                               // rankine: radius of the solid-body core [m], > 0
+  double max_speed = 0.0;                                 // rankine: swirl speed at the core radius [m/s], ccw > 0
+  Vec2 amplitude{0.0, 0.0};                               // tidal: u = velocity + amplitude cos(2 pi t / period + phase)
+  double period = 0.0;                                    // tidal [s], > 0
+  double phase = 0.0;                                     // tidal [rad]
+  std::vector<double> times;                              // time_series: strictly increasing, >= 2 entries [s]
+  std::vector<Vec2> values;                               // time_series: velocity at each time [m/s]
+  TimeBoundary outside = TimeBoundary::clamp;             // time_series beyond its times
+
+  static FieldSpec uniform(const Vec2& v) {
+    FieldSpec s;
+    s.velocity = v;
+    return s;
+  }
+};
+
+// Empty when `spec` can be built; otherwise what is wrong, naming the key (e.g. "period must be > 0 s").
+std::string field_spec_error(const FieldSpec& spec);
+// Throws std::invalid_argument with field_spec_error() for an invalid spec.
+std::shared_ptr<const VelocityField> make_field(const FieldSpec& spec);
+
+}  // namespace polyfloe::forcing

@@ -1,0 +1,160 @@
+#include "scene/forcing_reader.h"
+
+#include "forcing/analytic_fields.h"
+
+namespace polyfloe::scene::detail {
+
+namespace {
+
+void read_term(MapReader m, bool& enabled, double& coefficient, const Range& range) {
+  m.boolean("enabled", enabled);
+  m.number("coefficient", coefficient, range);
+  m.finish();
+}
+
+Eigen::Matrix2d to_matrix2(const Context& ctx, const Field& f, const char* unit) {
+  const std::string what = "a list of 2 rows [[du/dx, du/dy], [dv/dx, dv/dy]] [" + std::string(unit) + "]";
+  const std::vector<Field> rows = list_items(ctx, f, what);
+  if (rows.size() != 2) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
+  Eigen::Matrix2d g;
+  for (int r = 0; r < 2; ++r) g.row(r) = to_vec2(ctx, rows[static_cast<std::size_t>(r)], any(unit)).transpose();
+  return g;
+}
+
+// One field block: 'type' picks the kind and with it the keys that may follow.
+forcing::FieldSpec read_field(MapReader m) {
+  using forcing::FieldKind;
+  const Context& ctx = m.context();
+  forcing::FieldSpec s;
+  if (!m.has("type"))
+    ctx.fail(m.self(), "missing required key 'type' (uniform, linear, solid_body, rankine, tidal, time_series)");
+  m.choice("type", s.kind,
+           {{"uniform", FieldKind::uniform},
+            {"linear", FieldKind::linear},
+            {"solid_body", FieldKind::solid_body},
+            {"rankine", FieldKind::rankine},
+            {"tidal", FieldKind::tidal},
+            {"time_series", FieldKind::time_series}});
+  switch (s.kind) {
+    case FieldKind::uniform: m.vec2("velocity", s.velocity, "m/s"); break;
+    case FieldKind::linear:
+      m.vec2("velocity", s.velocity, "m/s");
+      m.vec2("origin", s.origin, "m");
+      if (auto f = m.take("gradient")) s.gradient = to_matrix2(ctx, *f, "1/s");
+      m.vec2("depth_gradient", s.depth_gradient, "1/s");
+      break;
+    case FieldKind::solid_body:
+      m.vec2("centre", s.origin, "m");
+      m.number("angular_velocity", s.angular_velocity, any("rad/s"));
+      m.vec2("velocity", s.velocity, "m/s");
+      break;
+    case FieldKind::rankine: {
+      m.vec2("centre", s.origin, "m");
+      const auto fr = m.take("core_radius");
+      const auto fv = m.take("max_speed");
+      if (!fr || !fv) ctx.fail(m.self(), std::string("missing required key '") + (fr ? "max_speed" : "core_radius") + "'");
+      s.core_radius = to_number(ctx, *fr, positive("m"));
+      s.max_speed = to_number(ctx, *fv, any("m/s"));
+      m.vec2("velocity", s.velocity, "m/s");
+      break;
+    }
+    case FieldKind::tidal: {
+      m.vec2("velocity", s.velocity, "m/s");
+      m.vec2("amplitude", s.amplitude, "m/s");
+      const auto fp = m.take("period");
+      if (!fp) ctx.fail(m.self(), "missing required key 'period' [s]");
+      s.period = to_number(ctx, *fp, positive("s"));
+      m.number("phase", s.phase, any("rad"));
+      break;
+    }
+    case FieldKind::time_series: {
+      const auto ft = m.take("times");
+      const auto fv = m.take("velocities");
+      if (!ft || !fv) ctx.fail(m.self(), std::string("missing required key '") + (ft ? "velocities" : "times") + "'");
+      const std::vector<Field> times = list_items(ctx, *ft, "a list of times [s]");
+      const std::vector<Field> values = list_items(ctx, *fv, "a list of velocities [[u, v], ...] [m/s]");
+      if (times.size() < 2) ctx.fail(*ft, "expected at least 2 times, got " + describe(ft->value));
+      if (values.size() != times.size())
+        ctx.fail(*fv, "expected one velocity per time (" + std::to_string(times.size()) + "), got " +
+                          std::to_string(values.size()));
+      for (std::size_t i = 0; i < times.size(); ++i) {
+        s.times.push_back(to_number(ctx, times[i], any("s")));
+        if (i > 0 && !(s.times[i] > s.times[i - 1]))
+          ctx.fail(times[i], fmt(s.times[i]) + " s must be after the previous time " + fmt(s.times[i - 1]) + " s");
+        s.values.push_back(to_vec2(ctx, values[i], any("m/s")));
+      }
+      m.choice("outside", s.outside,
+               {{"clamp", forcing::TimeBoundary::clamp},
+                {"cyclic", forcing::TimeBoundary::cyclic},
+                {"error", forcing::TimeBoundary::error}});
+      break;
+    }
+  }
+  m.finish();
+  if (const std::string err = forcing::field_spec_error(s); !err.empty()) ctx.fail(m.self(), err);
+  return s;
+}
+
+// 'current' / 'wind' (a uniform velocity) or 'field' (any kind), not both.
+void read_velocity(MapReader& m, const char* shorthand, forcing::FieldSpec& spec) {
+  if (m.has(shorthand) && m.has("field"))
+    m.context().fail(m.self(), std::string("give only one of '") + shorthand + "' (uniform) and 'field'");
+  Vec2 v = spec.velocity;
+  if (m.vec2(shorthand, v, "m/s")) spec = forcing::FieldSpec::uniform(v);
+  if (auto f = m.optional_block("field")) spec = read_field(*f);
+}
+
+}  // namespace
+
+void read_forcing(MapReader m, Scene& s) {
+  forcing::DriftSettings& d = s.world.drift;
+  m.choice("treatment", d.treatment,
+           {{"semi_implicit", forcing::DriftTreatment::semi_implicit},
+            {"explicit", forcing::DriftTreatment::explicit_step}});
+  m.choice("quadrature", d.quadrature,
+           {{"centroid", forcing::Quadrature::centroid},
+            {"degree1", forcing::Quadrature::degree1},
+            {"degree2", forcing::Quadrature::degree2},
+            {"degree4", forcing::Quadrature::degree4},
+            {"degree5", forcing::Quadrature::degree5}});
+  MapReader ocean = m.block("ocean");
+  ocean.number("density", d.water_density, positive("kg/m^3"));
+  read_velocity(ocean, "current", s.ocean_field);
+  read_term(ocean.block("form_drag"), d.form_drag, d.form_drag_coefficient, closed(0.0, 10.0, "-"));
+  read_term(ocean.block("moment_drag"), d.moment_drag, d.moment_drag_coefficient, closed(0.0, 10.0, "-"));
+  read_term(ocean.block("skin_drag"), d.skin_drag, d.skin_drag_coefficient, closed(0.0, 1.0, "-"));
+  ocean.finish();
+  MapReader air = m.block("air");
+  air.number("density", d.air_density, positive("kg/m^3"));
+  read_velocity(air, "wind", s.wind_field);
+  read_term(air.block("drag"), d.air_drag, d.air_drag_coefficient, closed(0.0, 1.0, "-"));
+  air.finish();
+  MapReader cor = m.block("coriolis");
+  cor.boolean("enabled", d.coriolis);
+  cor.number("latitude", d.latitude, closed(-90.0, 90.0, "deg"));
+  cor.boolean("beta_plane", d.beta_plane);
+  cor.number("reference_y", d.reference_y, any("m"));
+  cor.finish();
+  m.finish();
+  d.ocean = forcing::make_field(s.ocean_field);
+  d.wind = forcing::make_field(s.wind_field);
+}
+
+void check_forcing(const Context& ctx, const Field& root, const Scene& s) {
+  const forcing::DriftSettings& d = s.world.drift;
+  if (!(s.ice_density < d.water_density))
+    ctx.fail({root.value["ice"]["density"], YAML::Node(), "ice.density"},
+             "ice density " + fmt(s.ice_density) + " kg/m^3 must be below the water density forcing.ocean.density = " +
+                 fmt(d.water_density) + " kg/m^3, or the floes would sink");
+  const std::pair<const forcing::FieldSpec*, const char*> fields[] = {{&s.ocean_field, "forcing.ocean.field"},
+                                                                      {&s.wind_field, "forcing.air.field"}};
+  for (const auto& [f, path] : fields) {
+    if (f->kind != forcing::FieldKind::time_series || f->outside != forcing::TimeBoundary::error) continue;
+    if (f->times.front() > 0.0 || f->times.back() < s.time.duration)
+      throw SceneError(ctx.file() + ": key '" + std::string(path) + ".times': the series covers [" +
+                       fmt(f->times.front()) + ", " + fmt(f->times.back()) + "] s but the run spans [0, " +
+                       fmt(s.time.duration) + "] s with outside: error; extend the series or choose clamp or cyclic");
+  }
+}
+
+}  // namespace polyfloe::scene::detail
