@@ -58,20 +58,30 @@ void World::drift_forces(double t) {
       // Quadrature points: body-frame levers turned into the world frame.
       const int q0 = quad_off_[i];
       const std::size_t nq = static_cast<std::size_t>(quad_off_[i + 1] - q0);
-      const std::span<Vec2> levers{quad_lever_.data(), nq};
-      for (std::size_t q = 0; q < nq; ++q)
-        levers[q] = geometry::rotate(quad_local_[q0 + q], rotation_[i].x(), rotation_[i].y());
-      const std::span<const double> weights{quad_weight_.data() + q0, nq};
+      const double c = rotation_[i].x(), sn = rotation_[i].y();
+      const double* lx = quad_lx_.data() + q0;
+      const double* ly = quad_ly_.data() + q0;
+      double* rx = quad_rx_.data();
+      double* ry = quad_ry_.data();
+      for (std::size_t q = 0; q < nq; ++q) {
+        rx[q] = c * lx[q] - sn * ly[q];
+        ry[q] = sn * lx[q] + c * ly[q];
+      }
+      const forcing::SurfaceSamples samples{{rx, nq}, {ry, nq}, {quad_weight_.data() + q0, nq}};
       auto surface = [&](const FieldNow& fluid, double z, double coefficient, double rho) {
         if (fluid.uniform) {
-          forcing::add_surface_drag(load, coefficient, rho, m, levers, weights, fluid.value);
+          forcing::add_surface_drag(load, coefficient, rho, m, samples, fluid.value);
           return;
         }
         const std::span<forcing::Vec3> pts{quad_points_.data(), nq};
         const std::span<Vec2> u{quad_fluid_.data(), nq};
-        for (std::size_t q = 0; q < nq; ++q) pts[q] = {pos_[i].x() + levers[q].x(), pos_[i].y() + levers[q].y(), z};
+        for (std::size_t q = 0; q < nq; ++q) pts[q] = {pos_[i].x() + rx[q], pos_[i].y() + ry[q], z};
         fluid.field->sample(t, pts, u);
-        forcing::add_surface_drag(load, coefficient, rho, m, levers, weights, u);
+        for (std::size_t q = 0; q < nq; ++q) {
+          quad_fx_[q] = u[q].x();
+          quad_fy_[q] = u[q].y();
+        }
+        forcing::add_surface_drag(load, coefficient, rho, m, samples, {quad_fx_.data(), nq}, {quad_fy_.data(), nq});
       };
       if (s.skin_drag) surface(ocean, -draft_[i], s.skin_drag_coefficient, s.water_density);
       if (s.air_drag) surface(wind, thickness_[i] - draft_[i], s.air_drag_coefficient, s.air_density);

@@ -5,55 +5,79 @@
 
 namespace polyfloe::dynamics {
 
-void World::kick(double half_dt) {
+// Where drag and Coriolis are treated semi-implicitly (bodies whose drift load has a damping matrix), drag enters
+// only the final kick (kick_implicit), over the whole step; the first half kick applies the other forces and
+// Coriolis at the start-of-step velocity.
+void World::kick(double h) {
   const std::size_t n = size();
   for (std::size_t i = 0; i < n; ++i) {
-    vel_[i] += (half_dt * inv_mass_[i]) * force_[i];
-    omega_[i] += half_dt * inv_inertia_[i] * torque_[i];
+    Vec2 f = force_[i];
+    double t = torque_[i];
+    if (i < drift_load_.size() && drift_load_[i].has_damping()) {
+      // Other forces, and Coriolis at v_n: the first half of its trapezoidal rule.
+      const forcing::DriftLoad& d = drift_load_[i];
+      f -= d.force + d.mf * geometry::perp_left(vel_[i]);
+      t -= d.torque;
+    }
+    vel_[i] += (h * inv_mass_[i]) * f;
+    omega_[i] += h * inv_inertia_[i] * t;
   }
 }
 
-// The final half kick with drag and Coriolis implicit: their load is linear in v = (u, omega) once each sample's
-// speed factor is frozen at the predicted velocity v*, F_d(v) = F_d(v*) - D (v - v*), so
-//   (M + h D) v_new = M v + h (F + D v*),   F the total force evaluated at v*.
-// With the explicit first half kick this is the trapezoidal rule on the linearised drag: A-stable, and an exact
-// rotation (Cayley) for Coriolis. The stored force is brought to v_new so the next first kick starts from it.
-void World::kick_semi_implicit(double h) {
+// A = M + dt D_drag + h C (C the Coriolis part m f [[0, -1], [1, 0]]) is positive definite (M > 0, D_drag >= 0,
+// C antisymmetric), so the cofactor inverse of the 3 x 3 is safe.
+World::Vec3 World::solve_with_damping(const forcing::DriftLoad& d, double dt, double mass, double inertia,
+                                      const Vec2& f1, double f2) {
+  const double h = 0.5 * dt;
+  const double a00 = mass + dt * d.dxx, a01 = dt * d.dxy - h * d.mf, a02 = dt * d.dxw;
+  const double a10 = dt * d.dxy + h * d.mf, a11 = mass + dt * d.dyy, a12 = dt * d.dyw;
+  const double a20 = dt * d.dxw, a21 = dt * d.dyw, a22 = inertia + dt * d.dww;
+  const double c00 = a11 * a22 - a12 * a21, c01 = a12 * a20 - a10 * a22, c02 = a10 * a21 - a11 * a20;
+  const double inv_det = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02);
+  // x = A^-1 f via the adjugate (transposed cofactors).
+  const double x0 = (c00 * f1.x() + (a02 * a21 - a01 * a22) * f1.y() + (a01 * a12 - a02 * a11) * f2) * inv_det;
+  const double x1 = (c01 * f1.x() + (a00 * a22 - a02 * a20) * f1.y() + (a02 * a10 - a00 * a12) * f2) * inv_det;
+  const double x2 = (c02 * f1.x() + (a01 * a20 - a00 * a21) * f1.y() + (a00 * a11 - a01 * a10) * f2) * inv_det;
+  return {{x0, x1}, x2};
+}
+
+World::Vec3 World::implicit_velocity(std::size_t i, double dt) const {
+  // Drag linear in v with each sample's speed factor frozen at the prediction v*: F_d(v) = b - D v; Coriolis
+  // F_c(v) = -C v. With F_o the other forces at the end of the step and v the half-kicked velocity
+  // (v = v_n + h (F_o,n - C v_n) / m):
+  //   M v_new = M v + h F_o + dt (b - D v_new) - h C v_new
+  // i.e. backward Euler for drag (L-stable: no ringing at dt >> the relaxation time, and the steady state of the
+  // step is the true balance F_o + b - D v - C v = 0) and the trapezoidal rule for Coriolis (a Cayley rotation:
+  // the speed of an inertial oscillation is kept exactly).
+  const forcing::DriftLoad& d = drift_load_[i];
+  const double h = 0.5 * dt;
+  const Vec2 f_other = force_[i] - d.force;
+  const double t_other = torque_[i] - d.torque;
+  return solve_with_damping(d, dt, mass_[i], inertia_[i], mass_[i] * vel_[i] + h * f_other + dt * lin_force_[i],
+                            inertia_[i] * omega_[i] + h * t_other + dt * lin_torque_[i]);
+}
+
+void World::kick_implicit(double dt) {
+  const double h = 0.5 * dt;
   const std::size_t n = size();
   for (std::size_t i = 0; i < n; ++i) {
-    const forcing::DriftLoad& d = drift_load_[i];  // sized by drift_forces() in compute_forces()
+    forcing::DriftLoad& d = drift_load_[i];  // with lin_force_, set by compute_forces()
     if (!is_dynamic_[i] || !d.has_damping()) {
       vel_[i] += (h * inv_mass_[i]) * force_[i];
       omega_[i] += h * inv_inertia_[i] * torque_[i];
       continue;
     }
-    // A = M + h D = [[a, -b, p], [b, a, q], [p, q, r]]: eliminate the (u_x, u_y) block B = [[a, -b], [b, a]]
-    // (B^-1 = [[a, b], [-b, a]] / (a^2 + b^2)); the Schur complement r - a (p^2 + q^2) / (a^2 + b^2) > 0 since
-    // M + h D is positive definite.
-    const double m = mass_[i], a = m + h * d.c, b = h * d.mf, p = h * d.cx, q = h * d.cy,
-                 r = inertia_[i] + h * d.crr;
-    const Vec2& vs = vel_eval_[i];
-    const double ws = omega_eval_[i];
-    // rhs = M v + h (F + D v*)
-    const double dvx = d.c * vs.x() - d.mf * vs.y() + d.cx * ws;
-    const double dvy = d.mf * vs.x() + d.c * vs.y() + d.cy * ws;
-    const double dvw = d.cx * vs.x() + d.cy * vs.y() + d.crr * ws;
-    const double f1x = m * vel_[i].x() + h * (force_[i].x() + dvx);
-    const double f1y = m * vel_[i].y() + h * (force_[i].y() + dvy);
-    const double f2 = inertia_[i] * omega_[i] + h * (torque_[i] + dvw);
-    const double inv_det = 1.0 / (a * a + b * b);
-    // B^-1 f1 and B^-1 P
-    const double gx = (a * f1x + b * f1y) * inv_det, gy = (-b * f1x + a * f1y) * inv_det;
-    const double hx = (a * p + b * q) * inv_det, hy = (-b * p + a * q) * inv_det;
-    const double w_new = (f2 - p * gx - q * gy) / (r - p * hx - q * hy);
-    const Vec2 u_new{gx - hx * w_new, gy - hy * w_new};
-    // The force at the new velocity: F - D (v_new - v*).
-    const Vec2 du = u_new - vs;
-    const double dw = w_new - ws;
-    force_[i] -= Vec2{d.c * du.x() - d.mf * du.y() + d.cx * dw, d.mf * du.x() + d.c * du.y() + d.cy * dw};
-    torque_[i] -= d.cx * du.x() + d.cy * du.y() + d.crr * dw;
-    vel_[i] = u_new;
-    omega_[i] = w_new;
+    const Vec3 v = implicit_velocity(i, dt);
+    vel_[i] = v.u;
+    omega_[i] = v.w;
+    // The drift load at the new velocity (the linear model's), so force_ stays the total force.
+    const Vec2 f_other = force_[i] - d.force;
+    const double t_other = torque_[i] - d.torque;
+    const Eigen::Vector3d dv = d.damping_times(v.u, v.w);
+    d.force = lin_force_[i] - dv.head<2>();
+    d.torque = lin_torque_[i] - dv.z();
+    force_[i] = f_other + d.force;
+    torque_[i] = t_other + d.torque;
   }
 }
 

@@ -118,7 +118,17 @@ class World {
 
  private:
   void kick(double half_dt);
-  void kick_semi_implicit(double half_dt);
+  void kick_implicit(double dt);
+  struct Vec3 {
+    Vec2 u;
+    double w;
+  };
+  // Solves (M + dt D_drag + dt/2 C) v = (p, p_w) for a body velocity v = (u, w); D_drag and C (Coriolis) are the
+  // parts of the damping matrix of `d`.
+  static Vec3 solve_with_damping(const forcing::DriftLoad& d, double dt, double mass, double inertia, const Vec2& p,
+                                 double p_w);
+  // Body i's velocity after the final kick of a step of dt, from its half-kicked velocity (see integrate.cpp).
+  Vec3 implicit_velocity(std::size_t i, double dt) const;
   void drift(double dt);
   void update_shapes();
   void update_shape(int i);
@@ -145,11 +155,14 @@ class World {
   std::vector<double> thickness_, mass_, inertia_, radius_, plan_area_;
   std::vector<double> draft_, side_area_, equivalent_radius_;  // [m], submerged side area [m^2], sqrt(A/pi) [m]
   std::vector<int> quad_off_{0};      // body i's bottom/top quadrature points: quad_off_[i] .. quad_off_[i+1]-1
-  std::vector<Vec2> quad_local_;      // body-frame lever of each point from the centroid [m]
+  std::vector<double> quad_lx_, quad_ly_;  // body-frame lever of each point from the centroid [m]
   std::vector<double> quad_weight_;   // area carried [m^2]
-  // drift: the load of the last evaluation with its damping matrix (drag with frozen speed factors, Coriolis),
-  // for the semi-implicit kick
+  // drift, where treated semi-implicitly: the drift part of force_/torque_ with the damping matrix of the last
+  // evaluation (drag with frozen speed factors, Coriolis) ...
   std::vector<forcing::DriftLoad> drift_load_;
+  // ... and that linear model's drift load at v = 0, b in F_d(v) = b - D v [N, N m]
+  std::vector<Vec2> lin_force_;
+  std::vector<double> lin_torque_;
   std::vector<Motion> motion_;
   std::vector<std::uint8_t> is_dynamic_;
   // world-frame shapes, refreshed after each drift
@@ -161,7 +174,8 @@ class World {
   std::vector<contact::CandidatePair> pairs_;
   std::vector<ContactRecord> contacts_;
   std::vector<forcing::Vec3> side_points_, quad_points_;
-  std::vector<Vec2> side_water_, quad_lever_, quad_fluid_;
+  std::vector<Vec2> side_water_, quad_fluid_;
+  std::vector<double> quad_rx_, quad_ry_, quad_fx_, quad_fy_;  // world-frame levers, sampled fluid (x, y)
   double worst_q2_ = 0.0;  // max over contacts of v^2 (k_n/m*)^4: the shortest contact has the largest
   double worst_v2_ = 0.0;
   int worst_a_ = -1, worst_b_ = -1;

@@ -1,5 +1,7 @@
 #include "forcing/drift.h"
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -49,21 +51,59 @@ void form_drag(DriftLoad& load, double coefficient, double rho, double draft, co
     const Vec2 w = m.velocity_at(r) - water[i];
     // (w . n) L with n L = perp_right(b - a): the face's normal velocity times its length [m^2/s].
     const double wn_len = w.dot(geometry::perp_right(b - a));
-    if (wn_len > 0.0) acc.add(k * wn_len, r, w);
+    // f = -k L d (w.n) w: along w its derivative is 2 k L d (w.n), across it k L d (w.n). A face in the lee
+    // (w.n <= 0) adds zeros: no branch to mispredict.
+    const double c = k * std::max(wn_len, 0.0);
+    acc.add(c, c / std::max(w.squaredNorm(), 1e-300), r, w);
   }
   load += acc;
 }
 
+// Surface drag, one sample at a time (few samples: the centroid rule).
 template <class Fluid>
-void surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m, std::span<const Vec2> levers,
-                  std::span<const double> weights, const Fluid& fluid) {
-  const double k = 0.5 * coefficient * rho;  // [kg/m^3]
-  DriftLoad acc;
-  for (std::size_t q = 0; q < levers.size(); ++q) {
-    const Vec2 w = m.velocity_at(levers[q]) - fluid[q];
-    acc.add(k * weights[q] * w.norm(), levers[q], w);
+void surface_drag(DriftLoad& load, double k, const FloeMotion& m, const SurfaceSamples& q, const Fluid& fx,
+                  const Fluid& fy) {
+  const std::size_t n = q.rx.size();
+  DriftLoad acc;  // local: kept in registers (load may alias the inputs)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rx = q.rx[i], ry = q.ry[i];
+    const Vec2 w{m.velocity.x() - m.omega * ry - fx[i], m.velocity.y() + m.omega * rx - fy[i]};
+    const double speed = w.norm();
+    const double kw = k * q.weight[i];
+    acc.add(kw * speed, kw / std::max(speed, 1e-300), {rx, ry}, w);  // s = c / |w|^2
   }
   load += acc;
+}
+
+struct Scalar {
+  double v;
+  double operator[](std::size_t) const { return v; }
+};
+
+// The same over up to kChunk samples at a time in Eigen arrays (SIMD sqrt, division and reductions): faster from
+// a few samples on.
+constexpr Eigen::Index kChunk = 64;
+using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, Eigen::ColMajor, kChunk, 1>;
+using ConstMap = Eigen::Map<const Eigen::ArrayXd>;
+
+template <class FluidX, class FluidY>
+void surface_drag_chunk(DriftLoad& acc, double k, const FloeMotion& m, const ConstMap& rx, const ConstMap& ry,
+                        const ConstMap& weight, const FluidX& fx, const FluidY& fy) {
+  const Chunk wx = m.velocity.x() - m.omega * ry - fx;  // w = u + omega k x r - fluid
+  const Chunk wy = m.velocity.y() + m.omega * rx - fy;
+  const Chunk speed = (wx.square() + wy.square()).sqrt();
+  const Chunk kw = k * weight;
+  const Chunk c = kw * speed;               // [N s/m]
+  const Chunk s = kw / speed.max(1e-300);  // c / |w|^2
+  const Chunk e = rx * wy - ry * wx;        // (k x r) . w
+  acc.force -= Vec2((c * wx).sum(), (c * wy).sum());
+  acc.torque -= (c * e).sum();
+  acc.dxx += (c + s * wx.square()).sum();
+  acc.dxy += (s * wx * wy).sum();
+  acc.dyy += (c + s * wy.square()).sum();
+  acc.dxw += (s * wx * e - c * ry).sum();
+  acc.dyw += (s * wy * e + c * rx).sum();
+  acc.dww += (c * (rx.square() + ry.square()) + s * e.square()).sum();
 }
 
 }  // namespace
@@ -90,17 +130,32 @@ void add_moment_drag(DriftLoad& load, double coefficient, double rho, double sub
   const double r3 = equivalent_radius * equivalent_radius * equivalent_radius;
   const double c = 0.5 * coefficient * rho * submerged_side_area * r3 * std::abs(omega_rel);  // [N m s]
   load.torque -= c * omega_rel;
-  load.crr += c;
+  load.dww += 2.0 * c;  // d(|x| x)/dx = 2 |x|
 }
 
-void add_surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m,
-                      std::span<const Vec2> levers, std::span<const double> weights, std::span<const Vec2> fluid) {
-  surface_drag(load, coefficient, rho, m, levers, weights, Sampled{fluid});
+void add_surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m, const SurfaceSamples& q,
+                      std::span<const double> fluid_x, std::span<const double> fluid_y) {
+  const double k = 0.5 * coefficient * rho;  // [kg/m^3]
+  const Eigen::Index n = static_cast<Eigen::Index>(q.rx.size());
+  if (n < 4) return surface_drag(load, k, m, q, fluid_x, fluid_y);
+  for (Eigen::Index i = 0; i < n; i += kChunk) {
+    const Eigen::Index len = std::min(kChunk, n - i);
+    surface_drag_chunk(load, k, m, ConstMap(q.rx.data() + i, len), ConstMap(q.ry.data() + i, len),
+                       ConstMap(q.weight.data() + i, len), ConstMap(fluid_x.data() + i, len),
+                       ConstMap(fluid_y.data() + i, len));
+  }
 }
 
-void add_surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m,
-                      std::span<const Vec2> levers, std::span<const double> weights, const Vec2& fluid) {
-  surface_drag(load, coefficient, rho, m, levers, weights, Uniform{fluid});
+void add_surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m, const SurfaceSamples& q,
+                      const Vec2& fluid) {
+  const double k = 0.5 * coefficient * rho;
+  const Eigen::Index n = static_cast<Eigen::Index>(q.rx.size());
+  if (n < 4) return surface_drag(load, k, m, q, Scalar{fluid.x()}, Scalar{fluid.y()});
+  for (Eigen::Index i = 0; i < n; i += kChunk) {
+    const Eigen::Index len = std::min(kChunk, n - i);
+    surface_drag_chunk(load, k, m, ConstMap(q.rx.data() + i, len), ConstMap(q.ry.data() + i, len),
+                       ConstMap(q.weight.data() + i, len), fluid.x(), fluid.y());
+  }
 }
 
 void add_coriolis(DriftLoad& load, double mass, double f, const Vec2& u) {

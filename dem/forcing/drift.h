@@ -3,8 +3,11 @@
 // the fluid velocities sampled where they need them; the World's forcing stage calls them for every floe.
 //
 // Every kernel adds to a DriftLoad: a force, a torque, and the damping matrix D with which that load changes with
-// the floe's velocity v = (u_x, u_y, omega) when each sample's speed factor (|w|, or w.n for a face) is held fixed:
-// F(v) ~ F(v*) - D (v - v*). The integrator uses D to treat drag and Coriolis semi-implicitly (docs/model.md).
+// the floe's velocity v = (u_x, u_y, omega): F(v) ~ F(v*) - D (v - v*). The integrator uses D to treat drag and
+// Coriolis semi-implicitly (docs/model.md). D is the exact derivative for skin, air and moment drag (a Newton
+// linearisation: freezing |w| instead makes large steps ring in a 2-cycle, the fixed-point map of two balancing
+// quadratic drags having slope exactly -1); for form drag it is exact along the relative velocity and keeps the
+// face's normal speed across it, which keeps D symmetric and positive semi-definite.
 #pragma once
 
 #include <Eigen/Core>
@@ -64,42 +67,52 @@ struct DriftSettings {
 };
 
 // Force, torque and damping matrix accumulated over a floe's samples. Torque is about the floe's centre (z).
-// The damping matrix for v = (u_x, u_y, omega) has the structure every kernel here produces:
-//   D = [[c, -mf, cx], [mf, c, cy], [cx, cy, crr]]
-// (drag: symmetric, positive semi-definite; Coriolis: the antisymmetric m f part).
+// The damping matrix D (for v = (u_x, u_y, omega)) is the derivative -dF/dv of the load: a symmetric positive
+// semi-definite drag part plus the antisymmetric Coriolis part m f [[0, -1], [1, 0]] in the (u_x, u_y) block.
 struct DriftLoad {
   Vec2 force{0.0, 0.0};  // [N]
   double torque = 0.0;   // [N m]
-  double c = 0.0;        // sum of sample coefficients [N s/m]
-  double cx = 0.0, cy = 0.0;  // sum of c (k x r) [N s]
-  double crr = 0.0;      // sum of c |r|^2, plus the drag moment's [N m s]
+  // symmetric drag part [N s/m; N s; N m s]
+  double dxx = 0.0, dxy = 0.0, dyy = 0.0, dxw = 0.0, dyw = 0.0, dww = 0.0;
   double mf = 0.0;       // Coriolis m f [kg/s]
 
-  // A sample force -c w at lever r from the centre, c >= 0 [N s/m] with its speed factor frozen, w the sample's
-  // velocity relative to the fluid [m/s].
-  void add(double ci, const Vec2& r, const Vec2& w) {
-    force -= ci * w;
-    torque -= ci * geometry::cross(r, w);
-    c += ci;
-    cx -= ci * r.y();  // (k x r).x = -r.y
-    cy += ci * r.x();
-    crr += ci * r.squaredNorm();
+  // A sample force f = -c w at lever r from the centre, w the sample's velocity relative to the fluid [m/s],
+  // c >= 0 [N s/m] its speed factor, with the derivative df/dw = -(c I + s w w^T): s = c / |w|^2 for quadratic
+  // drag c = k |w| (its exact Jacobian, c (I + w w^T / |w|^2)) [N s^3/m^3].
+  void add(double c, double s, const Vec2& r, const Vec2& w) {
+    force -= c * w;
+    torque -= c * geometry::cross(r, w);
+    const Vec2 rp = geometry::perp_left(r);  // dw/domega
+    const double e = rp.dot(w);
+    dxx += c + s * w.x() * w.x();
+    dxy += s * w.x() * w.y();
+    dyy += c + s * w.y() * w.y();
+    dxw += c * rp.x() + s * w.x() * e;
+    dyw += c * rp.y() + s * w.y() * e;
+    dww += c * r.squaredNorm() + s * e * e;
   }
   DriftLoad& operator+=(const DriftLoad& o) {
     force += o.force;
     torque += o.torque;
-    c += o.c;
-    cx += o.cx;
-    cy += o.cy;
-    crr += o.crr;
+    dxx += o.dxx;
+    dxy += o.dxy;
+    dyy += o.dyy;
+    dxw += o.dxw;
+    dyw += o.dyw;
+    dww += o.dww;
     mf += o.mf;
     return *this;
   }
-  bool has_damping() const { return c != 0.0 || crr != 0.0 || mf != 0.0; }
+  bool has_damping() const { return dxx != 0.0 || dyy != 0.0 || dww != 0.0 || mf != 0.0; }
   Eigen::Matrix3d damping() const {
     Eigen::Matrix3d d;
-    d << c, -mf, cx, mf, c, cy, cx, cy, crr;
+    d << dxx, dxy - mf, dxw, dxy + mf, dyy, dyw, dxw, dyw, dww;
     return d;
+  }
+  // D v [N, N, N m]
+  Eigen::Vector3d damping_times(const Vec2& u, double w) const {
+    return {dxx * u.x() + (dxy - mf) * u.y() + dxw * w, (dxy + mf) * u.x() + dyy * u.y() + dyw * w,
+            dxw * u.x() + dyw * u.y() + dww * w};
   }
 };
 
@@ -138,14 +151,19 @@ double water_rotation_rate(std::span<const Vec2> vertices, std::span<const Vec2>
 void add_moment_drag(DriftLoad& load, double coefficient, double rho, double submerged_side_area,
                      double equivalent_radius, double omega_rel);
 
+// Quadrature samples of a floe's bottom or top, as arrays (structure of arrays: the kernel runs in SIMD).
+struct SurfaceSamples {
+  std::span<const double> rx, ry;  // world-frame lever of each sample from the floe's centre [m]
+  std::span<const double> weight;  // area it carries [m^2]
+};
+
 // Quadratic surface drag (Eq. 13 on the bottom, Eq. 14 on the top): the stress -1/2 c rho |w| w with
-// w = u + omega k x r - fluid(x) integrated by the quadrature points: levers r[q] from the centre [m], weights
-// [m^2], fluid[q] [m/s].
-void add_surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m,
-                      std::span<const Vec2> levers, std::span<const double> weights, std::span<const Vec2> fluid);
+// w = u + omega k x r - fluid(x) integrated by the quadrature samples; the fluid velocity at each sample [m/s].
+void add_surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m, const SurfaceSamples& q,
+                      std::span<const double> fluid_x, std::span<const double> fluid_y);
 // The same in a fluid moving at `fluid` everywhere.
-void add_surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m,
-                      std::span<const Vec2> levers, std::span<const double> weights, const Vec2& fluid);
+void add_surface_drag(DriftLoad& load, double coefficient, double rho, const FloeMotion& m, const SurfaceSamples& q,
+                      const Vec2& fluid);
 
 // Coriolis force -m f k x u of a floe of mass m [kg] at velocity u [m/s], f [1/s].
 void add_coriolis(DriftLoad& load, double mass, double f, const Vec2& u);
