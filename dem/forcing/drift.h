@@ -47,7 +47,7 @@ struct DriftSettings {
   bool air_drag = true;
   double air_drag_coefficient = 0.0012;    // c_a [-]
   // Bottom and top integrals
-  Quadrature quadrature = Quadrature::degree1;
+  Quadrature quadrature = Quadrature::degree2;  // see docs/figures/drift_quadrature.png
   // Coriolis -m f k x u, f = 2 Omega sin(latitude) [+ beta (y - reference_y) on a beta plane]
   bool coriolis = false;
   double latitude = 75.0;                  // [deg], [-90, 90]

@@ -22,13 +22,6 @@ struct TrianglePoint {
   double l1, l2, l3, w;
 };
 
-// Strang-Fix 3-point rule (degree 2).
-constexpr std::array<TrianglePoint, 3> kDegree2{{
-    {2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0, 1.0 / 3.0},
-    {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0, 1.0 / 3.0},
-    {1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0, 1.0 / 3.0},
-}};
-
 // Dunavant's 6-point rule (degree 4), Int. J. Numer. Meth. Eng. 21 (1985) 1129-1148, table entry p = 4.
 constexpr double kA4 = 0.445948490915965, kB4 = 0.108103018168070, kW4a = 0.223381589678011;
 constexpr double kC4 = 0.091576213509771, kD4 = 0.816847572980459, kW4b = 0.109951743655322;
@@ -50,8 +43,8 @@ std::span<const TrianglePoint> triangle_rule(Quadrature q) {
   static constexpr std::array<TrianglePoint, 1> kDegree1{{{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0, 1.0}}};
   switch (q) {
     case Quadrature::centroid:
-    case Quadrature::degree1: return kDegree1;
-    case Quadrature::degree2: return kDegree2;
+    case Quadrature::degree1:
+    case Quadrature::degree2: return kDegree1;  // (degree2 is built apart: shared edge midpoints)
     case Quadrature::degree4: return kDegree4;
     case Quadrature::degree5: return kDegree5;
   }
@@ -61,7 +54,9 @@ std::span<const TrianglePoint> triangle_rule(Quadrature q) {
 }  // namespace
 
 int quadrature_points(Quadrature q, int n) {
-  return q == Quadrature::centroid ? 1 : n * static_cast<int>(triangle_rule(q).size());
+  if (q == Quadrature::centroid) return 1;
+  if (q == Quadrature::degree2) return 2 * n;
+  return n * static_cast<int>(triangle_rule(q).size());
 }
 
 void polygon_quadrature(std::span<const Vec2> v, Quadrature q, std::vector<QuadraturePoint>& out) {
@@ -79,6 +74,19 @@ void polygon_quadrature(std::span<const Vec2> v, Quadrature q, std::vector<Quadr
   c = v[0] + c / (3.0 * area2);
   if (q == Quadrature::centroid) {
     out.push_back({c, area});
+    return;
+  }
+  if (q == Quadrature::degree2) {
+    // The edge-midpoint rule on each fan triangle (weight 1/3 at each edge's midpoint, exact for degree 2): the
+    // midpoints of the spokes are shared by neighbouring triangles, so the n-gon needs 2n points, not 3n.
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2& a = v[i];
+      const Vec2& b = v[(i + 1) % n];
+      const Vec2& prev = v[(i + n - 1) % n];
+      const double tri = 0.5 * geometry::cross(a - c, b - c), tri_prev = 0.5 * geometry::cross(prev - c, a - c);
+      out.push_back({0.5 * (c + a), (tri_prev + tri) / 3.0});  // spoke c-a, shared by triangles i-1 and i
+      out.push_back({0.5 * (a + b), tri / 3.0});               // outer edge a-b
+    }
     return;
   }
   const std::span<const TrianglePoint> rule = triangle_rule(q);

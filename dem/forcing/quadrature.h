@@ -1,6 +1,7 @@
 // Quadrature over a convex polygon, for the skin and air drag integrals (paper Eq. 13-14 integrated over the
 // bottom and top faces). The polygon is split into a fan of triangles from its centroid; each triangle is
-// integrated with a symmetric rule exact for polynomials of the stated degree. `centroid` is the paper's form: one
+// integrated with a symmetric rule exact for polynomials of the stated degree (degree 1: centroid; degree 2: edge
+// midpoints; degree 4: Dunavant's 6 points; degree 5: Radon's 7 points). `centroid` is the paper's form: one
 // point at the polygon's centroid carrying the whole area.
 #pragma once
 
@@ -17,7 +18,7 @@ using geometry::Vec2;
 enum class Quadrature {
   centroid,  // 1 point per polygon (exact for degree 1)
   degree1,   // 1 point per fan triangle (its centroid)
-  degree2,   // 3 points per triangle (Strang-Fix)
+  degree2,   // the edge midpoints of each triangle, the spoke midpoints shared: 2 points per polygon vertex
   degree4,   // 6 points per triangle (Dunavant)
   degree5,   // 7 points per triangle (Radon)
 };

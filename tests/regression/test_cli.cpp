@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -155,5 +156,34 @@ TEST(Cli, RunKeepsUnrelatedFilesInTheOutputFolder) {
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "floes" / "notes.txt"));
   EXPECT_FALSE(fs::exists(out / "floes" / "floes_000099.vtp"));
+  fs::remove_all(out);
+}
+
+TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
+  // Two days of tidal drift with wind and Coriolis at 30 s steps (semi-implicit drag and Coriolis).
+  const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/drift_tidal.yaml";
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_tidal";
+  Result r = polyfloe("run " + scene + " -o " + out.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  std::ifstream resolved(out / "scene.resolved.yaml");
+  const std::string text((std::istreambuf_iterator<char>(resolved)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("field: {type: tidal, velocity: [0.05, 0], amplitude: [0.25, 0.1], period: 44712, phase: 0}"),
+            std::string::npos) << text;
+  EXPECT_NE(text.find("coriolis: {enabled: true, latitude: 75"), std::string::npos) << text;
+  // Steered into each other, two floes meet within a few steps: the contact cannot be resolved at 30 s steps, and
+  // the run stops (exit 3) saying which bodies and what step would do.
+  r = polyfloe("run " + scene + " -o " + out.string() + " --set floes.1.position=[200,0] --set floes.1.velocity=[-1,0]");
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_NE(r.output.find("the contact between bodies 0 and 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("or run.dt to"), std::string::npos) << r.output;
+  fs::remove_all(out);
+}
+
+TEST(Cli, VortexSceneRuns) {
+  const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/drift_vortex.yaml";
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_vortex";
+  const Result r = polyfloe("run " + scene + " -o " + out.string() + " --set run.duration=0.5 --set output.interval=0.25");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "floes.pvd"));
   fs::remove_all(out);
 }

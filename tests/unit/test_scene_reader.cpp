@@ -463,6 +463,77 @@ TEST(SceneOverrides, ErrorsSayWhichSet) {
 TEST(ResolvedYaml, RoundTripsTheExampleScenes) {
   expect_round_trip(read_scene(kSceneDir + "channel.yaml", {}));
   expect_round_trip(read_scene(kSceneDir + "two_floes.yaml", {}));
+  expect_round_trip(read_scene(kSceneDir + "drift_tidal.yaml", {}));
+  expect_round_trip(read_scene(kSceneDir + "drift_vortex.yaml", {}));
+}
+
+TEST(ResolvedYaml, RoundTripsEveryFieldKind) {
+  const char* fields[] = {
+      "{type: uniform, velocity: [0.25, -1e-3]}",
+      "{type: linear, velocity: [0.1, 0.2], origin: [10, -20], gradient: [[1e-3, -2e-3], [3e-4, 0]],"
+      " depth_gradient: [0.01, 0.02]}",
+      "{type: solid_body, centre: [500, 400], angular_velocity: -2e-3, velocity: [0.1, 0]}",
+      "{type: rankine, centre: [1, 2], core_radius: 300, max_speed: 0.7, velocity: [0, 0.05]}",
+      "{type: tidal, velocity: [0.05, 0], amplitude: [0.3, 0.1], period: 44712, phase: 1.5}",
+      "{type: time_series, times: [0, 60, 600.5], velocities: [[0, 0], [0.2, 0.1], [0.3, -0.1]], outside: cyclic}",
+  };
+  for (const char* f : fields) {
+    SCOPED_TRACE(f);
+    const Scene s = parse_scene(std::string(kOneFloe) + "forcing:\n  ocean: {field: " + f + "}\n  air: {field: " + f +
+                                    "}\n",
+                                "f.yaml", {});
+    EXPECT_EQ(s.ocean_field.kind, s.wind_field.kind);
+    ASSERT_TRUE(s.world.drift.ocean && s.world.drift.wind);
+    expect_round_trip(s);
+  }
+  const Scene lin = parse_scene(std::string(kOneFloe) + "forcing:\n  ocean: {field: " + fields[1] + "}\n", "f.yaml", {});
+  EXPECT_EQ(lin.ocean_field.kind, forcing::FieldKind::linear);
+  EXPECT_EQ(lin.ocean_field.gradient(0, 1), -2e-3);
+  EXPECT_EQ(lin.ocean_field.gradient(1, 0), 3e-4);
+  // The built field is the one described: u(10, -20 + 100, z = -1) = u0 + G (0, 100) + dudz z.
+  const Vec2 u = lin.world.drift.ocean->at({10.0, 80.0, -1.0}, 0.0);
+  EXPECT_NEAR((u - Vec2(0.1 - 0.2 - 0.01, 0.2 + 0.0 - 0.02)).norm(), 0.0, 1e-15);
+}
+
+TEST(SceneErrors, ForcingBlock) {
+  const std::string one(kOneFloe);
+  std::string m = parse_error(one + "forcing:\n  ocean: {current: [1, 0], field: {type: uniform}}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.ocean': give only one of 'current' (uniform) and 'field'")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {velocity: [1, 0]}\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:5:12: key 'forcing.ocean.field': missing required key 'type'")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: swirl}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.type': expected one of uniform, linear, solid_body, rankine, "
+                          "tidal, time_series, got 'swirl'")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: uniform, angular_velocity: 1}\n");
+  EXPECT_TRUE(contains(m, "unknown key 'forcing.ocean.field.angular_velocity'; allowed in 'forcing.ocean.field': "
+                          "type, velocity")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: rankine, core_radius: 100}\n");
+  EXPECT_TRUE(contains(m, "missing required key 'max_speed'")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: rankine, core_radius: 0, max_speed: 1}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.core_radius': 0 is outside the allowed range (0, inf) [m]")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: tidal, amplitude: [1, 0]}\n");
+  EXPECT_TRUE(contains(m, "missing required key 'period' [s]")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: time_series, times: [0, 10, 10], "
+                        "velocities: [[0, 0], [1, 0], [2, 0]]}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.times.2': 10 s must be after the previous time 10 s")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: time_series, times: [0, 10], velocities: [[0, 0]]}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.velocities': expected one velocity per time (2), got 1")) << m;
+  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: linear, gradient: [[1, 2]]}\n");
+  EXPECT_TRUE(contains(m, "expected a list of 2 rows [[du/dx, du/dy], [dv/dx, dv/dy]] [1/s]")) << m;
+  m = parse_error(one + "run: {duration: 100}\nforcing:\n  air:\n    field: {type: time_series, times: [0, 50], "
+                        "velocities: [[0, 0], [1, 0]], outside: error}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.air.field.times': the series covers [0, 50] s but the run spans [0, 100] s "
+                          "with outside: error")) << m;
+  m = parse_error(one + "forcing: {quadrature: degree3}\n");
+  EXPECT_TRUE(contains(m, "expected one of centroid, degree1, degree2, degree4, degree5, got 'degree3'")) << m;
+  m = parse_error(one + "forcing: {coriolis: {latitude: 91}}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.coriolis.latitude': 91 is outside the allowed range [-90, 90] [deg]")) << m;
+  m = parse_error(one + "forcing: {ocean: {form_drag: {coefficient: -0.1}}}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.ocean.form_drag.coefficient': -0.1 is outside the allowed range [0, 10] [-]"))
+      << m;
+  m = parse_error(one + "ice: {density: 1100}\n");
+  EXPECT_TRUE(contains(m, "key 'ice.density': ice density 1100 kg/m^3 must be below the water density "
+                          "forcing.ocean.density = 1025 kg/m^3, or the floes would sink")) << m;
 }
 
 TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
@@ -473,8 +544,12 @@ TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
       "ice: {density: 900.5, youngs_modulus: 3.3e8, poisson_ratio: 0.123456789012345}\n"
       "contact: {restitution: 0.1, friction: 0.7, damping_model: paper, force_model: gradient, broad_phase_cell: 12}\n"
       "forcing:\n"
-      "  ocean: {density: 1000, current: [0.1, -0.2], skin_drag: {enabled: false, coefficient: 0.001}}\n"
+      "  treatment: explicit\n"
+      "  quadrature: degree4\n"
+      "  ocean: {density: 1000, current: [0.1, -0.2], skin_drag: {enabled: false, coefficient: 0.001},\n"
+      "          form_drag: {enabled: false, coefficient: 0.3}, moment_drag: {enabled: false, coefficient: 0.2}}\n"
       "  air: {density: 1.3, wind: [-3, 7], drag: {enabled: false, coefficient: 0.002}}\n"
+      "  coriolis: {enabled: true, latitude: -65.5, beta_plane: true, reference_y: 1234}\n"
       "floes:\n"
       "  - {regular: {sides: 7, radius: 3}, position: [100, 5], yaw_deg: 33, velocity: [1, 2],\n"
       "     angular_velocity: -0.3, thickness: 0.5, motion: kinematic, id: 99, external_force: [1e6, 2],\n"
