@@ -1,7 +1,29 @@
 #!/usr/bin/env bash
-# Regenerates docs/figures/channel.png (the README picture) from a run of the default channel scene.
+# Regenerates the figures in docs/figures/ from their runs and benchmarks:
+#   channel.png           the README picture, from a run of the default channel scene (~5 min);
+#   drift_quadrature.png  skin-drag torque error vs cost per quadrature rule, from tests/bench/bench_drift (~1 min),
+#                         with its data in docs/data/drift_quadrature.json.
+#   bash postprocess/make_figures.sh [channel|drift]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ -x build/polyfloe ] || bash scripts/build.sh
-./build/polyfloe run dem/scenes/channel.yaml -o results/channel
-/usr/bin/python3 postprocess/plot_frames.py results/channel/results.h5 -t 0 150 300 -o docs/figures/channel.png
+which=("$@")
+[ ${#which[@]} -gt 0 ] || which=(channel drift)
+for w in "${which[@]}"; do
+  case "$w" in
+    channel)
+      [ -x build/polyfloe ] || bash scripts/build.sh
+      ./build/polyfloe run dem/scenes/channel.yaml -o results/channel
+      /usr/bin/python3 postprocess/plot_frames.py results/channel/results.h5 -t 0 150 300 -o docs/figures/channel.png
+      ;;
+    drift)
+      cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release >/dev/null
+      cmake --build build-bench --target bench_drift -j "$(nproc)"
+      build-bench/tests/bench_drift --benchmark_filter=SkinDrag --benchmark_repetitions=5 \
+        --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true \
+        --benchmark_out=docs/data/drift_quadrature.json --benchmark_out_format=json
+      /usr/bin/python3 postprocess/plot_drift_quadrature.py docs/data/drift_quadrature.json \
+        docs/figures/drift_quadrature.png
+      ;;
+    *) echo "make_figures.sh: unknown figure '$w' (channel, drift)" >&2; exit 2 ;;
+  esac
+done

@@ -1,18 +1,20 @@
 #!/usr/bin/env bash
-# Builds the benchmarks (Release) and runs them: the planar narrow phase (tests/bench/bench_narrow_phase.cpp) and the
-# whole World::step (tests/bench/bench_step.cpp). Console output on the terminal, JSON in the results folder.
+# Builds the benchmarks (Release) and runs them: the planar narrow phase (tests/bench/bench_narrow_phase.cpp), the
+# whole World::step (tests/bench/bench_step.cpp) and the drift forcing (tests/bench/bench_drift.cpp: quadrature
+# accuracy vs cost, the drift stage per floe). Console output on the terminal, JSON in the results folder.
 #
 #   bash scripts/run_benchmarks.sh [-b BUILD_DIR] [-o RESULTS_DIR] [-r REPETITIONS] [-- EXTRA_BENCHMARK_ARGS...]
 #
 #   -b  build folder (default build-bench; configured as Release with Ninja when new)
-#   -o  results folder (default results/bench): bench_narrow_phase.json, bench_step.json, machine.txt
+#   -o  results folder (default results/bench): bench_narrow_phase.json, bench_step.json, bench_drift.json,
+#       machine.txt
 #   -r  repetitions; > 1 adds --benchmark_repetitions=N --benchmark_report_aggregates_only=true (mean, median,
 #       stddev, cv) and --benchmark_enable_random_interleaving=true (repetitions of different cases are shuffled,
 #       so a burst of load elsewhere on the machine does not land on one case); docs/performance.md quotes the
 #       medians of -r 5
 #   after --: passed to both executables (e.g. --benchmark_filter=DensePack)
 #
-# Run time once built, on the 2-core reference machine: about 40 s for -r 1, about 2.5 min for -r 5.
+# Run time once built, on the 2-core reference machine: about 1 min for -r 1, about 4 min for -r 5.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -43,7 +45,7 @@ run() {
 generator=()
 if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
 run cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
-if ! run cmake --build "$BUILD_DIR" --target bench_narrow_phase bench_step -j "$(nproc)"; then
+if ! run cmake --build "$BUILD_DIR" --target bench_narrow_phase bench_step bench_drift -j "$(nproc)"; then
   echo "run_benchmarks.sh: build failed (the benchmark targets need Google Benchmark: apt-get install libbenchmark-dev)" >&2
   exit 1
 fi
@@ -62,7 +64,7 @@ if [[ "$REPS" -gt 1 ]]; then
   extra=(--benchmark_repetitions="$REPS" --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true)
 fi
 
-for b in bench_narrow_phase bench_step; do
+for b in bench_narrow_phase bench_step bench_drift; do
   run "$BUILD_DIR/tests/$b" --benchmark_format=console --benchmark_counters_tabular=false \
     --benchmark_out="$OUT_DIR/$b.json" --benchmark_out_format=json "${extra[@]}" "$@"
 done
@@ -88,5 +90,13 @@ print("  step                     us/floe-step  contacts/floe  candidates/floe  
 for b in rows("bench_step.json"):
     print(f"  {b['run_name'].split('/iterations')[0]:<24} {b['us_per_floe_step']:12.3f}  {b['contacts_per_floe']:13.3f}"
           f"  {b['candidates_per_floe']:15.3f}  {b['narrow_only_ns']:19.0f}  {b['narrow_law_ns']:18.0f}")
+print("  drift                    ns/floe  torque error  force error  (label)")
+for b in rows("bench_drift.json"):
+    if "torque_error" in b:
+        print(f"  {b['run_name'].split('/iterations')[0]:<24} {b['ns_per_floe']:7.0f}  {b['torque_error']:12.2e}"
+              f"  {b['force_error']:11.2e}  ({b.get('label', '')})")
+    else:
+        print(f"  {b['run_name'].split('/iterations')[0]:<24} {b['drift_ns_per_floe']:7.0f}  (drift stage; whole step"
+              f" {b['step_ns_per_floe']:.0f} ns/floe; {b.get('label', '')})")
 PY
 fi
