@@ -53,8 +53,8 @@ void form_drag(DriftLoad& load, double coefficient, double rho, double draft, co
     const double wn_len = w.dot(geometry::perp_right(b - a));
     // f = -k L d (w.n) w: along w its derivative is 2 k L d (w.n), across it k L d (w.n). A face in the lee
     // (w.n <= 0) adds zeros: no branch to mispredict.
-    const double c = k * std::max(wn_len, 0.0);
-    acc.add(c, c / std::max(w.squaredNorm(), 1e-300), r, w);
+    const double speed = w.norm();
+    acc.add(k * std::max(wn_len, 0.0), r, w, speed > 0.0 ? 1.0 / speed : 0.0);
   }
   load += acc;
 }
@@ -70,7 +70,7 @@ void surface_drag(DriftLoad& load, double k, const FloeMotion& m, const SurfaceS
     const Vec2 w{m.velocity.x() - m.omega * ry - fx[i], m.velocity.y() + m.omega * rx - fy[i]};
     const double speed = w.norm();
     const double kw = k * q.weight[i];
-    acc.add(kw * speed, kw / std::max(speed, 1e-300), {rx, ry}, w);  // s = c / |w|^2
+    acc.add(kw * speed, {rx, ry}, w, speed > 0.0 ? 1.0 / speed : 0.0);
   }
   load += acc;
 }
@@ -93,17 +93,20 @@ void surface_drag_chunk(DriftLoad& acc, double k, const FloeMotion& m, const Con
   const Chunk wy = m.velocity.y() + m.omega * rx - fy;
   const Chunk speed = (wx.square() + wy.square()).sqrt();
   const Chunk kw = k * weight;
-  const Chunk c = kw * speed;               // [N s/m]
-  const Chunk s = kw / speed.max(1e-300);  // c / |w|^2
-  const Chunk e = rx * wy - ry * wx;        // (k x r) . w
+  const Chunk c = kw * speed;  // [N s/m]
+  // w / |w| (0 where w = 0; no division by zero is evaluated)
+  const Chunk inv = (speed > 0.0).select(1.0 / speed.max(1e-300), Chunk::Zero(speed.size()));
+  const Chunk ux = wx * inv, uy = wy * inv;
+  const Chunk e = rx * wy - ry * wx;  // (k x r) . w
+  const Chunk ue = e * inv;
   acc.force -= Vec2((c * wx).sum(), (c * wy).sum());
   acc.torque -= (c * e).sum();
-  acc.dxx += (c + s * wx.square()).sum();
-  acc.dxy += (s * wx * wy).sum();
-  acc.dyy += (c + s * wy.square()).sum();
-  acc.dxw += (s * wx * e - c * ry).sum();
-  acc.dyw += (s * wy * e + c * rx).sum();
-  acc.dww += (c * (rx.square() + ry.square()) + s * e.square()).sum();
+  acc.dxx += (c * (1.0 + ux.square())).sum();
+  acc.dxy += (c * ux * uy).sum();
+  acc.dyy += (c * (1.0 + uy.square())).sum();
+  acc.dxw += (c * (ux * ue - ry)).sum();
+  acc.dyw += (c * (uy * ue + rx)).sum();
+  acc.dww += (c * (rx.square() + ry.square() + ue.square())).sum();
 }
 
 }  // namespace
@@ -170,7 +173,7 @@ Vec2 free_drift_velocity(const DriftSettings& s, const Vec2& current, const Vec2
     const double k = std::sqrt(s.air_density * s.air_drag_coefficient / (s.water_density * s.skin_drag_coefficient));
     return (current + k * wind) / (1.0 + k);
   }
-  if (s.air_drag && !(s.form_drag || s.moment_drag)) return wind;
+  if (s.air_drag && !s.form_drag) return wind;  // (the drag moment does not resist translation)
   return current;
 }
 

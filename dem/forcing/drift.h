@@ -76,20 +76,20 @@ struct DriftLoad {
   double dxx = 0.0, dxy = 0.0, dyy = 0.0, dxw = 0.0, dyw = 0.0, dww = 0.0;
   double mf = 0.0;       // Coriolis m f [kg/s]
 
-  // A sample force f = -c w at lever r from the centre, w the sample's velocity relative to the fluid [m/s],
-  // c >= 0 [N s/m] its speed factor, with the derivative df/dw = -(c I + s w w^T): s = c / |w|^2 for quadratic
-  // drag c = k |w| (its exact Jacobian, c (I + w w^T / |w|^2)) [N s^3/m^3].
-  void add(double c, double s, const Vec2& r, const Vec2& w) {
+  // A sample force f = -c w at lever r from the centre: w the sample's velocity relative to the fluid [m/s], c >= 0
+  // its speed factor [N s/m] (k |w| for quadratic drag, k (w.n) for a face). The derivative added is the quadratic
+  // drag's, df/dw = -c (I + w^ w^T), w^ = w inv_speed (inv_speed = 1/|w|, or 0 where w = 0).
+  void add(double c, const Vec2& r, const Vec2& w, double inv_speed) {
     force -= c * w;
     torque -= c * geometry::cross(r, w);
     const Vec2 rp = geometry::perp_left(r);  // dw/domega
-    const double e = rp.dot(w);
-    dxx += c + s * w.x() * w.x();
-    dxy += s * w.x() * w.y();
-    dyy += c + s * w.y() * w.y();
-    dxw += c * rp.x() + s * w.x() * e;
-    dyw += c * rp.y() + s * w.y() * e;
-    dww += c * r.squaredNorm() + s * e * e;
+    const double ux = w.x() * inv_speed, uy = w.y() * inv_speed, ue = rp.dot(w) * inv_speed;
+    dxx += c * (1.0 + ux * ux);
+    dxy += c * ux * uy;
+    dyy += c * (1.0 + uy * uy);
+    dxw += c * (rp.x() + ux * ue);
+    dyw += c * (rp.y() + uy * ue);
+    dww += c * (r.squaredNorm() + ue * ue);
   }
   DriftLoad& operator+=(const DriftLoad& o) {
     force += o.force;

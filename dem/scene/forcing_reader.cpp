@@ -142,10 +142,28 @@ void read_forcing(MapReader m, Scene& s) {
 
 void check_forcing(const Context& ctx, const Field& root, const Scene& s) {
   const forcing::DriftSettings& d = s.world.drift;
-  if (!(s.ice_density < d.water_density))
-    ctx.fail({root.value["ice"]["density"], YAML::Node(), "ice.density"},
+  if (!(s.ice_density < d.water_density)) {
+    // Point at whichever of the two densities the scene gave (ice.density first); const lookups never throw.
+    const YAML::Node& tree = root.value;
+    Field where{YAML::Node(), YAML::Node(), "ice.density"};
+    for (const auto& [block, sub, path] : {std::tuple{"ice", "", "ice.density"}, {"forcing", "ocean", "forcing.ocean.density"}}) {
+      // (a missing key yields an invalid node: only IsDefined() may be asked of it)
+      auto child = [](const YAML::Node& m, const char* key) {
+        return m.IsDefined() && m.IsMap() ? m[key] : YAML::Node();  // (a default Node is defined and null)
+      };
+      // (YAML::Node's operator= writes into the node it refers to: build each step as a new node)
+      const YAML::Node b = child(tree, block);
+      const YAML::Node m = *sub ? child(b, sub) : b;
+      const YAML::Node n = child(m, "density");
+      if (n.IsDefined() && !n.IsNull()) {
+        where = {n, YAML::Node(), path};
+        break;
+      }
+    }
+    ctx.fail(where,
              "ice density " + fmt(s.ice_density) + " kg/m^3 must be below the water density forcing.ocean.density = " +
                  fmt(d.water_density) + " kg/m^3, or the floes would sink");
+  }
   const std::pair<const forcing::FieldSpec*, const char*> fields[] = {{&s.ocean_field, "forcing.ocean.field"},
                                                                       {&s.wind_field, "forcing.air.field"}};
   for (const auto& [f, path] : fields) {

@@ -209,11 +209,31 @@ TEST(DriftKernels, FormDragOnlyOnFacesMovingIntoTheWater) {
   EXPECT_NEAR(load.force.x(), -0.5 * 0.2 * 1025.0 * (10.0 * 0.9) * 4.0, 1e-9);
   EXPECT_NEAR(load.force.y(), 0.0, 1e-12);
   EXPECT_NEAR(load.torque, 0.0, 1e-9);
-  // Relative flow exactly along a face (tangential): no push from that face.
+  // A square at rest in water moving along +y at 0.5 m/s: w = (0, -0.5). The +-x faces see the flow along them
+  // (w.n = 0: no push), the +y face is in the lee, the upstream -y face pushes: f = -k L (w.n) w, n = (0, -1).
   forcing::DriftLoad along;
-  forcing::add_form_drag(along, 0.2, 1025.0, 0.9, {{0, 0}, {0.0, 0.0}, 0.0}, v, Vec2{0.0, 0.0});
-  EXPECT_EQ(along.force, Vec2(0.0, 0.0));
-  EXPECT_FALSE(along.has_damping());
+  forcing::add_form_drag(along, 0.2, 1025.0, 0.9, {{0, 0}, {0.0, 0.0}, 0.0}, v, Vec2{0.0, 0.5});
+  EXPECT_NEAR((along.force - Vec2(0.0, 0.5 * 0.2 * 1025.0 * 9.0 * 0.25)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(along.torque, 0.0, 1e-9);
+  // Still water, nothing moving: no force, no damping (and no NaN from 0/0).
+  forcing::DriftLoad rest;
+  forcing::add_form_drag(rest, 0.2, 1025.0, 0.9, {{0, 0}, {0.0, 0.0}, 0.0}, v, Vec2{0.0, 0.0});
+  EXPECT_EQ(rest.force, Vec2(0.0, 0.0));
+  EXPECT_FALSE(rest.has_damping());
+}
+
+TEST(DriftKernels, FormDragOnASpinningSquareByHand) {
+  // Square of side 10 centred at the origin, u = (1, 0.3) m/s, omega = 0.1 rad/s, still water, C rho d / 2 = 100.
+  // Face centres r, normals n, w = u + omega k x r:
+  //   +x: r = (5, 0),  w = (1, 0.8),   w.n = 1    -> f = -100 10 1 (1, 0.8) = (-1000, -800), r x f = -4000
+  //   +y: r = (0, 5),  w = (0.5, 0.3), w.n = 0.3  -> f = -100 10 0.3 (0.5, 0.3) = (-150, -90), r x f = 750
+  //   -x: r = (-5, 0), w = (1, -0.2),  w.n = -1   -> lee, 0
+  //   -y: r = (0, -5), w = (1.5, 0.3), w.n = -0.3 -> lee, 0
+  forcing::DriftLoad load;
+  forcing::add_form_drag(load, 0.2, 1000.0, 1.0, {{0, 0}, {1.0, 0.3}, 0.1}, square(5.0, 0.0, {0.0, 0.0}),
+                         Vec2{0.0, 0.0});
+  EXPECT_NEAR((load.force - Vec2(-1150.0, -890.0)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(load.torque, -3250.0, 1e-9);
 }
 
 TEST(DriftKernels, WaterRotationIsHalfTheVorticity) {
@@ -257,30 +277,48 @@ TEST(DriftKernels, DampingIsTheJacobian) {
   // Surface drag with a 3-point rule in a sheared flow and the drag moment: D = -dF/dv exactly (central
   // differences, 1e-7 relative); D symmetric and positive definite.
   std::mt19937_64 rng(11);
-  const auto v = tsupport::random_convex(rng, 7, 20.0, 14.0);
-  std::vector<forcing::QuadraturePoint> qp;
-  forcing::polygon_quadrature(v, forcing::Quadrature::degree2, qp);
-  std::vector<double> rx, ry, w, fx, fy;
-  for (const auto& q : qp) {
-    rx.push_back(q.point.x());
-    ry.push_back(q.point.y());
-    w.push_back(q.weight);
-    fx.push_back(0.4 + 0.01 * q.point.y());
-    fy.push_back(-0.1 + 0.003 * q.point.x());
+  // A triangle with degree1 (3 samples: the one-at-a-time path) and a 7-gon with degree2 (14: the SIMD path).
+  for (const auto& [nv, rule] : {std::pair{3, forcing::Quadrature::degree1}, std::pair{7, forcing::Quadrature::degree2}}) {
+    const auto v = tsupport::random_convex(rng, nv, 20.0, 14.0);
+    std::vector<forcing::QuadraturePoint> qp;
+    forcing::polygon_quadrature(v, rule, qp);
+    std::vector<double> rx, ry, w, fx, fy;
+    for (const auto& q : qp) {
+      rx.push_back(q.point.x());
+      ry.push_back(q.point.y());
+      w.push_back(q.weight);
+      fx.push_back(0.4 + 0.01 * q.point.y());
+      fy.push_back(-0.1 + 0.003 * q.point.x());
+    }
+    const forcing::SurfaceSamples samples{rx, ry, w};
+    const LoadOf surface_and_moment = [&](const forcing::FloeMotion& m) {
+      forcing::DriftLoad l;
+      forcing::add_surface_drag(l, 0.0055, 1025.0, m, samples, fx, fy);
+      forcing::add_moment_drag(l, 0.14, 1025.0, 60.0, 9.0, m.omega - 0.001);
+      return l;
+    };
+    const forcing::FloeMotion m0{{0, 0}, {0.1, 0.05}, 0.003};
+    const Eigen::Matrix3d d = surface_and_moment(m0).damping();
+    const Eigen::Matrix3d jac = jacobian(surface_and_moment, m0, 1e-6);
+    EXPECT_LT((d - jac).norm(), 1e-7 * d.norm()) << to_string(rule) << "\n" << d << "\n" << jac;
+    EXPECT_LT((d - d.transpose()).norm(), 1e-12 * d.norm());
+    EXPECT_GT(d.eigenvalues().real().minCoeff(), 0.0);
+    // The two paths agree: the same samples one by one (uniform fluid overload, < 4 samples per call).
+    forcing::DriftLoad split;
+    for (std::size_t q = 0; q < rx.size(); ++q)
+      forcing::add_surface_drag(split, 0.0055, 1025.0, m0, {{&rx[q], 1}, {&ry[q], 1}, {&w[q], 1}}, Vec2(fx[q], fy[q]));
+    forcing::DriftLoad whole;
+    forcing::add_surface_drag(whole, 0.0055, 1025.0, m0, samples, fx, fy);
+    EXPECT_NEAR((split.force - whole.force).norm(), 0.0, 1e-12 * whole.force.norm());
+    EXPECT_NEAR(split.torque, whole.torque, 1e-12 * std::abs(whole.torque));
+    EXPECT_LT((split.damping() - whole.damping()).norm(), 1e-12 * whole.damping().norm());
   }
-  const forcing::SurfaceSamples samples{rx, ry, w};
-  const LoadOf surface_and_moment = [&](const forcing::FloeMotion& m) {
-    forcing::DriftLoad l;
-    forcing::add_surface_drag(l, 0.0055, 1025.0, m, samples, fx, fy);
-    forcing::add_moment_drag(l, 0.14, 1025.0, 60.0, 9.0, m.omega - 0.001);
-    return l;
-  };
-  const forcing::FloeMotion m0{{0, 0}, {0.1, 0.05}, 0.003};
-  const Eigen::Matrix3d d = surface_and_moment(m0).damping();
-  const Eigen::Matrix3d jac = jacobian(surface_and_moment, m0, 1e-6);
-  EXPECT_LT((d - jac).norm(), 1e-7 * d.norm()) << d << "\n" << jac;
-  EXPECT_LT((d - d.transpose()).norm(), 1e-12 * d.norm());
-  EXPECT_GT(d.eigenvalues().real().minCoeff(), 0.0);
+  // A huge floe at rest in still water: w = 0 everywhere; no NaN, no damping from the Newton term.
+  const std::vector<double> zx{0.0, 1e4}, zy{0.0, -1e4}, big{1e9, 1e9}, zero{0.0, 0.0};
+  forcing::DriftLoad rest;
+  forcing::add_surface_drag(rest, 0.0055, 1025.0, {{0, 0}, {0, 0}, 0.0}, {zx, zy, big}, zero, zero);
+  EXPECT_TRUE(rest.damping().allFinite());
+  EXPECT_FALSE(rest.has_damping());
 
   // Form drag: exact along the relative velocity of the one pushing face; symmetric, positive semi-definite.
   const auto sq = square(5.0, 0.0, {0.0, 0.0});

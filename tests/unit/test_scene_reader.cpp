@@ -534,6 +534,9 @@ TEST(SceneErrors, ForcingBlock) {
   m = parse_error(one + "ice: {density: 1100}\n");
   EXPECT_TRUE(contains(m, "key 'ice.density': ice density 1100 kg/m^3 must be below the water density "
                           "forcing.ocean.density = 1025 kg/m^3, or the floes would sink")) << m;
+  // Only the water density given: the message points at it (and no yaml-cpp error about the missing 'ice' block).
+  m = parse_error(one + "forcing: {ocean: {density: 900}}\n");
+  EXPECT_TRUE(starts_with(m, "t.yaml:3:28: key 'forcing.ocean.density': ice density 920 kg/m^3 must be below")) << m;
 }
 
 TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {

@@ -16,6 +16,9 @@
 //      (to 1e-12) - the printed Eq. 12 (r_e^2) would scale like a force;
 //   7. large steps: the semi-implicit treatment converges to case 2's balance at dt = 50 drag relaxation times
 //      (to 1e-9), where the explicit one blows up;
+//   7b. the fields are sampled where each term acts (side-face centres at half draft, bottom, top: hand values in a
+//      field that varies across the floe and with depth), and a constant external push ends at the drag's terminal
+//      velocity at every step size;
 //   8. a symmetric floe at the centre of a solid-body vortex spins up towards the water's rotation without
 //      overshoot and without drifting off (|u| < 1e-9 m/s).
 #include <gtest/gtest.h>
@@ -192,6 +195,64 @@ TEST(Drift, FormDragOnASquareAtRest) {
     EXPECT_NEAR(f.x(), hand, 1e-10 * hand);
     EXPECT_NEAR(f.y(), 0.0, 1e-10 * hand);
     EXPECT_NEAR(w.torques()[0], 0.0, 1e-10 * hand * l);
+  }
+}
+
+TEST(Drift, FieldsAreSampledWhereEachTermActs) {
+  // Square 10 m x 10 m, h = 2 m (draft d = 1.7951 m, freeboard 0.2049 m), at rest, centroid rule.
+  const double l = 10.0, h = 2.0, d = h * kRhoIce / 1025.0;
+  auto load = [&](forcing::DriftSettings s) {
+    dynamics::WorldSettings ws;
+    ws.drift = s;
+    dynamics::World w(ws);
+    w.add_body({.id = 1, .shape = rect(l, l), .thickness = h});
+    w.compute_forces(0.0);
+    return w.forces()[0];
+  };
+  FieldSpec depth;  // u = (1 + 0.1 y + 0.2 z, 0): varies across the floe and with depth
+  depth.kind = FieldKind::linear;
+  depth.velocity = {1.0, 0.0};
+  depth.gradient << 0.0, 0.1, 0.0, 0.0;
+  depth.depth_gradient = {0.2, 0.0};
+  // Form drag: only the upstream -x face (centre (-5, 0), half draft) pushes, against water 1 - 0.2 d / 2.
+  forcing::DriftSettings form = forcing::DriftSettings::none();
+  form.form_drag = true;
+  form.ocean = forcing::make_field(depth);
+  const double uf = 1.0 - 0.1 * d;
+  EXPECT_NEAR(load(form).x(), 0.5 * 0.20 * 1025.0 * l * d * uf * uf, 1e-9);
+  // Skin drag at the bottom (z = -d) and air drag at the top (z = h - d), the centroid rule.
+  forcing::DriftSettings skin = forcing::DriftSettings::none();
+  skin.skin_drag = true;
+  skin.quadrature = forcing::Quadrature::centroid;
+  skin.ocean = forcing::make_field(depth);
+  const double ub = 1.0 - 0.2 * d;
+  EXPECT_NEAR(load(skin).x(), 0.5 * 0.0055 * 1025.0 * l * l * ub * ub, 1e-9);
+  forcing::DriftSettings air = forcing::DriftSettings::none();
+  air.air_drag = true;
+  air.quadrature = forcing::Quadrature::centroid;
+  FieldSpec wind = depth;
+  wind.velocity = {10.0, 0.0};
+  wind.depth_gradient = {5.0, 0.0};  // strong shear near the surface
+  air.wind = forcing::make_field(wind);
+  const double ua = 10.0 + 5.0 * (h - d);
+  EXPECT_NEAR(load(air).x(), 0.5 * 0.0012 * 1.2 * l * l * ua * ua, 1e-9);
+}
+
+TEST(Drift, TerminalVelocityUnderAConstantLoad) {
+  // The semi-implicit kick with another force present: a constant push F against skin drag in still water ends at
+  // F = 1/2 c_w rho_w A u^2, at steps from small to far beyond the relaxation time.
+  for (double dt : {1.0, 100.0, 1e5}) {
+    dynamics::WorldSettings ws;
+    ws.drift = forcing::DriftSettings::none();
+    ws.drift.skin_drag = true;
+    dynamics::World w(ws);
+    const double f = 500.0;  // [N]
+    w.add_body({.id = 1, .shape = rect(10, 10), .external_force = {f, 0.0}});
+    for (int s = 0; s < 3000; ++s) w.step(dt);
+    const double u = std::sqrt(f / (0.5 * 0.0055 * 1025.0 * 100.0));
+    std::printf("terminal velocity under %.0f N, dt = %g s: %.12f m/s (closed form %.12f)\n", f, dt,
+                w.velocities()[0].x(), u);
+    EXPECT_NEAR(w.velocities()[0].x(), u, 1e-9 * u) << "dt " << dt;
   }
 }
 
