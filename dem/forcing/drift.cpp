@@ -96,9 +96,11 @@ void surface_drag_chunk(DriftLoad& acc, double k, const FloeMotion& m, const Con
   const Chunk c = kw * speed;  // [N s/m]
   // w / |w| (0 where w = 0; no division by zero is evaluated)
   const Chunk inv = (speed > 0.0).select(1.0 / speed.max(1e-300), Chunk::Zero(speed.size()));
-  const Chunk ux = wx * inv, uy = wy * inv;
   const Chunk e = rx * wy - ry * wx;  // (k x r) . w
-  const Chunk ue = e * inv;
+  // Lazy expressions (evaluated inside each sum: cheaper than storing them)
+  const auto ux = wx * inv;
+  const auto uy = wy * inv;
+  const auto ue = e * inv;
   acc.force -= Vec2((c * wx).sum(), (c * wy).sum());
   acc.torque -= (c * e).sum();
   acc.dxx += (c * (1.0 + ux.square())).sum();
