@@ -15,6 +15,7 @@
 
 #include "geometry/polygon.h"
 #include "run/simulation.h"
+#include "scene/field_statistics.h"
 #include "scene/scene_reader.h"
 
 #ifndef POLYFLOE_VERSION
@@ -101,7 +102,7 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
-int check(const scene::Scene& sc, const dynamics::World& world) {
+int check(const scene::Scene& sc, const dynamics::World& world, const scene::FieldStatistics& field) {
   const double dt = scene::time_step(sc, world);
   std::cout << scene::resolved_yaml(sc);
   std::size_t dynamic = 0;
@@ -114,6 +115,7 @@ int check(const scene::Scene& sc, const dynamics::World& world) {
             << "#   shortest contact duration at that speed: " << world.shortest_contact_duration(v) << " s\n"
             << "#   time step: " << dt << " s" << (sc.time.dt ? " (fixed by the scene)" : " (automatic)") << "\n"
             << "#   steps: " << static_cast<long long>(std::ceil(sc.time.duration / dt)) << "\n";
+  if (sc.floe_field) std::cout << "#   floe field: " << scene::to_string(field) << "\n";
   return run::kExitOk;
 }
 
@@ -140,9 +142,10 @@ int main(int argc, char** argv) {
   // Bad input is found here, before any output is created.
   scene::Scene sc;
   std::optional<dynamics::World> world;
+  scene::FieldStatistics field;
   try {
     sc = scene::read_scene(args.scene, args.overrides);
-    world.emplace(scene::build_world(sc));
+    world.emplace(scene::build_world(sc, &field));
     const double dt = scene::time_step(sc, *world);
     if (!(dt > 0.0) || !std::isfinite(dt))
       throw scene::SceneError(args.scene + ": cannot derive a time step (no dynamic body?); set run.dt");
@@ -160,7 +163,7 @@ int main(int argc, char** argv) {
     return run::kExitFailure;
   }
 
-  if (args.command == "check") return check(sc, *world);
+  if (args.command == "check") return check(sc, *world, field);
 
   run::RunOptions opt;
   opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
@@ -171,6 +174,7 @@ int main(int argc, char** argv) {
   try {
     std::cerr << "polyfloe: " << sc.name << ": " << world->size() << " bodies, " << sc.time.duration
               << " s simulated, dt = " << scene::time_step(sc, *world) << " s -> " << opt.output_dir.string() << "\n";
+    if (sc.floe_field) std::cerr << "polyfloe: floe field: " << scene::to_string(field) << "\n";
     run::Simulation sim(sc, std::move(*world), opt);
     const run::RunSummary s = sim.run();
     std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n"

@@ -8,6 +8,7 @@
 
 #include "forcing/drift.h"
 #include "scene/channel.h"
+#include "scene/field_statistics.h"
 #include "scene/floe_field.h"
 #include "scene/scene.h"
 
@@ -98,7 +99,7 @@ double time_step(const Scene& scene, const dynamics::World& world) {
   return duration / scene.time.steps_per_contact;
 }
 
-dynamics::World build_world(const Scene& scene) {
+dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
   dynamics::WorldSettings settings = scene.world;
   settings.contact.reference_speed = reference_speed(scene);
   dynamics::World world(settings);
@@ -194,6 +195,9 @@ dynamics::World build_world(const Scene& scene) {
     const FloeField field = generate_floe_field(*scene.floe_field, scene.ice_density, next, obstacles);
     const std::string where = scene.floe_field->source.where.empty() ? "floe_field" : scene.floe_field->source.where;
     for (const BodyDesc& desc : field.floes) add(world, desc, where);
+    if (field_report)
+      *field_report = field_statistics(field.floes, field.region_area, scene.floe_field->size_min,
+                                       scene.floe_field->size_max);
   }
   return world;
 }

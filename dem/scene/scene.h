@@ -103,7 +103,9 @@ struct Scene {
 
 // Builds the World (explicit bodies, generated walls and floe field). Throws SceneError naming the source of a
 // body that is invalid (non-convex polygon, overlaps, ...).
-dynamics::World build_world(const Scene& scene);
+// When `field_report` is given and the scene has a floe field, it receives the field's realised statistics.
+struct FieldStatistics;
+dynamics::World build_world(const Scene& scene, FieldStatistics* field_report = nullptr);
 
 // The reference impact speed the scene uses (its own, or the automatic one) [m/s].
 double reference_speed(const Scene& scene);
