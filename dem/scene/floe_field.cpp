@@ -191,7 +191,7 @@ std::vector<double> floe_sizes(const FloeFieldSpec& spec, FieldRandom& rng) {
   return sizes;
 }
 
-std::vector<Vec2> random_floe_polygon(FieldRandom& rng, int corners, double size) {
+std::vector<Vec2> random_floe_polygon(FieldRandom& rng, int corners, double size, double aspect_max) {
   const int k = corners;
   const double two_pi = 2.0 * std::numbers::pi;
   const double min_gap = kMinGapFraction * two_pi / k;  // [rad]
@@ -200,13 +200,17 @@ std::vector<Vec2> random_floe_polygon(FieldRandom& rng, int corners, double size
   for (double& c : cuts) c = rng.uniform();
   std::sort(cuts.begin(), cuts.end());
   const double free_angle = two_pi - k * min_gap;  // [rad]
-  const double start = rng.uniform(0.0, two_pi);   // random orientation [rad]
+  const double start = rng.uniform(0.0, two_pi);   // where the corners start on the ellipse [rad]
+  const double aspect = aspect_max > 1.0 ? rng.uniform(1.0, aspect_max) : 1.0;  // semi-axis ratio [-]
+  const double turn = rng.uniform(0.0, two_pi);    // random orientation of the ellipse [rad]
+  const double ct = std::cos(turn), st = std::sin(turn);
   std::vector<Vec2> v(static_cast<std::size_t>(k));
   for (int i = 0; i < k; ++i) {
     // vertex i sits after i gaps: i min_gaps plus the free angle up to cut i-1
     const double share = i == 0 ? 0.0 : cuts[static_cast<std::size_t>(i - 1)];
     const double angle = start + i * min_gap + free_angle * share;
-    v[static_cast<std::size_t>(i)] = Vec2(std::cos(angle), std::sin(angle));
+    // Points of an ellipse in parameter order are in strictly convex position.
+    v[static_cast<std::size_t>(i)] = geometry::rotate(Vec2(aspect * std::cos(angle), std::sin(angle)), ct, st);
   }
   const geometry::PolygonProperties props = geometry::polygon_properties(v);
   const double scale = std::sqrt(circle_area(size) / props.area);
@@ -269,7 +273,7 @@ FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamic
   for (std::size_t f = 0; f < sizes.size(); ++f) {
     const double size = sizes[f];
     const int corners = shape_rng.uniform_int(spec.corners_min, spec.corners_max);
-    const std::vector<Vec2> raw = random_floe_polygon(shape_rng, corners, size);
+    const std::vector<Vec2> raw = random_floe_polygon(shape_rng, corners, size, spec.aspect_max);
     auto shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(raw));
     PreparedPolygon body = prepare(shape->vertices());
     const double gap = placement_clearance(size);  // sizes descend: this floe is the smaller of any pair [m]

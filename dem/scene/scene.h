@@ -65,6 +65,7 @@ struct FloeFieldSpec {
   double exponent = 2.0;       // power-law exponent alpha of the size pdf f(x) = c x^-alpha (Eq. 15-16) [-]
   int corners_min = 5;         // corners per floe, drawn uniformly in [min, max]
   int corners_max = 10;
+  double aspect_max = 2.5;     // corners lie on an ellipse of semi-axis ratio uniform in [1, aspect_max] [-], [1, 10]
   double thickness = 1.0;      // [m]
   Vec2 velocity{0.0, 0.0};     // initial velocity [m/s]
   std::uint64_t seed = 1;

@@ -187,6 +187,7 @@ FloeFieldSpec read_floe_field(MapReader m) {
       s.corners_min = s.corners_max = static_cast<int>(to_integer(ctx, *f, 3, hi));
     }
   }
+  m.number("aspect_max", s.aspect_max, closed(1.0, 10.0, "-"));
   m.number("thickness", s.thickness, positive("m"));
   m.vec2("velocity", s.velocity, "m/s");
   m.unsigned64("seed", s.seed);

@@ -434,6 +434,30 @@ TEST(FieldStatistics, PowerLawFitRecoversTheExponentWithItsStandardError) {
   }
 }
 
+TEST(FieldStatistics, PaperCircularitiesForTheCornerRanges) {
+  // Paper section 2.2 (60 %, alpha = 2): corners 5-10 / 10-15 / 15-20 give mean circularity 0.83 / 0.90 / 0.92.
+  // With the default aspect_max = 2.5 the fields land within 2 % (acceptance: 5 %), over three seeds each.
+  const std::pair<int, double> ranges[] = {{5, 0.83}, {10, 0.90}, {15, 0.92}};
+  for (const auto& [lo, paper] : ranges) {
+    double sum = 0.0;
+    std::size_t floes = 0;
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+      FloeFieldSpec s = paper_spec(0.6);
+      s.corners_min = lo;
+      s.corners_max = lo + 5;
+      s.seed = seed;
+      const FloeField f = generate_floe_field(s, 920.0, 0);
+      const FieldStatistics st = field_statistics(f.floes, f.region_area, s.size_min, s.size_max);
+      sum += st.mean_circularity;
+      floes += st.floes;
+    }
+    const double mean = sum / 3.0;
+    std::printf("corners %d-%d at 60 %%: mean circularity %.4f (paper %.2f), %.0f floes per field\n", lo, lo + 5, mean,
+                paper, floes / 3.0);
+    EXPECT_NEAR(mean, paper, 0.02 * paper);
+  }
+}
+
 TEST(FieldStatistics, GeneratedFieldsMatchTheirSpec) {
   // The paper's settings (50 / 55 / 60 %, alpha = 2; alpha = 1.2 and 1.6 at 50 %), three seeds each: the
   // concentration within 0.5 % absolute, the fitted exponent within three standard errors, no overlaps.

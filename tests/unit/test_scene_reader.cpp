@@ -120,6 +120,7 @@ void expect_same_settings(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.exponent, y.exponent);
     EXPECT_EQ(x.corners_min, y.corners_min);
     EXPECT_EQ(x.corners_max, y.corners_max);
+    EXPECT_EQ(x.aspect_max, y.aspect_max);
     EXPECT_EQ(x.thickness, y.thickness);
     EXPECT_EQ(x.velocity, y.velocity);
     EXPECT_EQ(x.seed, y.seed);
@@ -560,13 +561,14 @@ TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
       "  - {rectangle: {width: 1, height: 2}, motion: fixed, position: [200, 0]}\n"
       "  - {polygon: [[0, 0], [1, 0], [0, 1]], position: [300, 0]}\n"
       "floe_field: {region: [-5, -6, 70, 80], concentration: 0.33, size: {min: 2, max: 9, exponent: 1},\n"
-      "             corners: 6, thickness: 1.5, velocity: [0.2, 0.1], seed: 18446744073709551615,\n"
+      "             corners: 6, aspect_max: 1.7, thickness: 1.5, velocity: [0.2, 0.1], seed: 18446744073709551615,\n"
       "             max_attempts: 77}\n"
       "channel: {basin_x_min: 1, basin_x_max: 2, basin_y_min: 3, basin_y_max: 400, funnel_length: 5,\n"
       "          opening: 6, strait_length: 7, wall_thickness: 8}\n",
       "all.yaml", {});
   EXPECT_EQ(s.name, "odd \"name\"");
   EXPECT_EQ(s.floe_field->corners_min, 6);
+  EXPECT_EQ(s.floe_field->aspect_max, 1.7);
   EXPECT_EQ(s.floe_field->corners_max, 6);
   EXPECT_EQ(s.floe_field->seed, 18446744073709551615ull);
   expect_round_trip(s);
