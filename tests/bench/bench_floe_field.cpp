@@ -5,6 +5,10 @@
 //   ./build/tests/bench_floe_field --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <random>
+#include <vector>
+
+#include "geometry/voronoi.h"
 #include "scene/field_statistics.h"
 #include "scene/floe_field.h"
 #include "thread_clock.h"
@@ -36,8 +40,23 @@ void BM_GenerateFloeField(benchmark::State& state) {
   state.counters["circularity"] = st.mean_circularity;
 }
 
+// Voronoi cells of N random sites in a 1 km x 1 km box (Boost.Polygon with mirrored sites), per site.
+void BM_VoronoiCells(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(1.0, 999.0);
+  std::vector<geometry::Vec2> sites(n);
+  for (auto& p : sites) p = {u(rng), u(rng)};
+  const geometry::Aabb box{{0.0, 0.0}, {1000.0, 1000.0}};
+  const double cpu0 = tsupport::thread_cpu_seconds();
+  for (auto _ : state) benchmark::DoNotOptimize(geometry::voronoi_cells(sites, box).data());
+  state.counters["us_per_site"] =
+      1e6 * (tsupport::thread_cpu_seconds() - cpu0) / (static_cast<double>(n) * static_cast<double>(state.iterations()));
+}
+
 }  // namespace
 
+BENCHMARK(BM_VoronoiCells)->Arg(1000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GenerateFloeField)->Args({1000, 50})->Args({1000, 60})->Args({8000, 60})->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
