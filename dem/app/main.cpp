@@ -177,8 +177,14 @@ int main(int argc, char** argv) {
     if (sc.floe_field) std::cerr << "polyfloe: floe field: " << scene::to_string(field) << "\n";
     run::Simulation sim(sc, std::move(*world), opt);
     const run::RunSummary s = sim.run();
-    std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n"
-              << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n"
+    std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
+    if (s.channel_area_passed) {
+      std::cout << "Channel: " << *s.channel_area_passed << " m^2 of ice passed the strait entrance; "
+                << (s.channel_jam_time ? "jammed from t = " + std::to_string(*s.channel_jam_time) + " s"
+                                       : std::string("no jam"))
+                << " (results.h5: /diagnostics/channel)\n";
+    }
+    std::cout << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n"
               << "  floes.pvd, contacts.pvd  (open in ParaView)\n"
               << "  results.h5               (time series; see docs/user-guide.md)\n";
     return run::kExitOk;

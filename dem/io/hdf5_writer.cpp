@@ -43,10 +43,12 @@ struct Hdf5Writer::Impl {
   Dataset position, orientation, velocity, angular_velocity;
   Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum,
       angular_momentum;
+  std::vector<Dataset> extra;
   // scratch rows
   std::vector<double> row3, row4;
 
-  Impl(const std::filesystem::path& path, const dynamics::World& world, const RunInfo& info, double water_density)
+  Impl(const std::filesystem::path& path, const dynamics::World& world, const RunInfo& info, double water_density,
+       const std::vector<ExtraSeries>& extra_series)
       : file(with_parent_folder(path), hdf5::File::Mode::truncate), bodies(world.size()) {
     if (!(water_density > 0.0) || !std::isfinite(water_density)) {
       throw IoError("HDF5 output " + path.string() + ": water density must be positive");
@@ -126,10 +128,23 @@ struct Hdf5Writer::Impl {
                                   "dynamic bodies");
     angular_momentum = root_series(diag, "angular_momentum", DType::f64, {}, kSeriesChunk, "kg m^2/s",
                                    "dynamic bodies, about the origin");
+    std::vector<std::pair<std::string, hdf5::Group>> groups;
+    for (const ExtraSeries& e : extra_series) {
+      auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == e.group; });
+      if (it == groups.end()) {
+        groups.emplace_back(e.group, diag.create_group(e.group));
+        it = groups.end() - 1;
+      }
+      extra.push_back(root_series(it->second, e.name.c_str(), DType::f64, {}, kSeriesChunk, e.units.c_str(),
+                                  e.description.c_str()));
+    }
     file.flush();
   }
 
-  void write_frame(const dynamics::World& world) {
+  void write_frame(const dynamics::World& world, std::span<const double> extra_values) {
+    if (extra_values.size() != extra.size())
+      throw IoError(file.path().string() + ": " + std::to_string(extra_values.size()) + " extra values for " +
+                    std::to_string(extra.size()) + " extra series");
     if (world.size() != bodies) {
       throw IoError(file.path().string() + ": the world has " + std::to_string(world.size()) +
                     " bodies, the file was started with " + std::to_string(bodies));
@@ -201,20 +216,23 @@ struct Hdf5Writer::Impl {
     max_overlap_depth.append_rows<double>({&depth_max, 1}, 1);
     linear_momentum.append_rows<double>(p2, 1);
     angular_momentum.append_rows<double>({&l, 1}, 1);
+    for (std::size_t k = 0; k < extra.size(); ++k) extra[k].append_rows<double>({&extra_values[k], 1}, 1);
     ++frames;
     file.flush();
   }
 };
 
 Hdf5Writer::Hdf5Writer(const std::filesystem::path& file, const dynamics::World& world, const RunInfo& info,
-                       double water_density)
-    : impl_(std::make_unique<Impl>(file, world, info, water_density)) {}
+                       double water_density, const std::vector<ExtraSeries>& extra)
+    : impl_(std::make_unique<Impl>(file, world, info, water_density, extra)) {}
 
 Hdf5Writer::~Hdf5Writer() = default;
 Hdf5Writer::Hdf5Writer(Hdf5Writer&&) noexcept = default;
 Hdf5Writer& Hdf5Writer::operator=(Hdf5Writer&&) noexcept = default;
 
-void Hdf5Writer::write_frame(const dynamics::World& world) { impl_->write_frame(world); }
+void Hdf5Writer::write_frame(const dynamics::World& world, std::span<const double> extra) {
+  impl_->write_frame(world, extra);
+}
 void Hdf5Writer::flush() { impl_->file.flush(); }
 int Hdf5Writer::frames() const { return impl_->frames; }
 const std::filesystem::path& Hdf5Writer::path() const { return impl_->file.path(); }

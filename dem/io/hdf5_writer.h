@@ -18,6 +18,8 @@
 
 #include <filesystem>
 #include <memory>
+#include <span>
+#include <vector>
 #include <string>
 
 namespace polyfloe::dynamics {
@@ -34,17 +36,26 @@ struct RunInfo {
   double dt = 0.0;         // time step [s]
 };
 
+// A scalar series the driver adds to /diagnostics/<group>/<name>, one value per frame.
+struct ExtraSeries {
+  std::string group;        // e.g. "channel"
+  std::string name;         // e.g. "area_flux"
+  std::string units;        // e.g. "m^2/s"
+  std::string description;
+};
+
 class Hdf5Writer {
  public:
   // Creates (replaces) `file` and writes the static data of `world`'s bodies. Throws IoError naming the file.
   Hdf5Writer(const std::filesystem::path& file, const dynamics::World& world, const RunInfo& info,
-             double water_density);
+             double water_density, const std::vector<ExtraSeries>& extra = {});
   ~Hdf5Writer();
   Hdf5Writer(Hdf5Writer&&) noexcept;
   Hdf5Writer& operator=(Hdf5Writer&&) noexcept;
 
-  // Appends one frame at world.time() and flushes. Throws IoError if the bodies differ from the first frame's.
-  void write_frame(const dynamics::World& world);
+  // Appends one frame at world.time() and flushes; `extra` holds one value per ExtraSeries, in their order.
+  // Throws IoError if the bodies differ from the first frame's or `extra` has the wrong length.
+  void write_frame(const dynamics::World& world, std::span<const double> extra = {});
   void flush();
   int frames() const;
   const std::filesystem::path& path() const;

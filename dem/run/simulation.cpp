@@ -1,5 +1,7 @@
 #include "run/simulation.h"
 
+#include "run/channel_monitor.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -118,14 +120,35 @@ RunSummary Simulation::run() {
   std::unique_ptr<io::VtkSeriesWriter> vtk;
   std::unique_ptr<io::Hdf5Writer> h5;
   if (scene_.output.vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options_.output_dir, scene_.output.contacts, rho_w);
+  std::optional<ChannelMonitor> channel;
+  std::vector<io::ExtraSeries> extra;
+  if (scene_.channel) {
+    channel.emplace(*scene_.channel, world_);
+    extra = {{"channel", "area_flux", "m^2/s", "net ice area through the strait entrance since the last frame / time"},
+             {"channel", "area_passed", "m^2", "net ice area through the strait entrance since the start"},
+             {"channel", "upstream_area", "m^2", "ice area with centroids before the strait entrance"},
+             {"channel", "funnel_area", "m^2", "of which in the funnel, waiting to enter the strait"},
+             {"channel", "funnel_mean_speed", "m/s", "mean speed of the floes in the funnel"},
+             {"channel", "strait_floes", "1", "floes with centroids in the strait"},
+             {"channel", "strait_mean_speed", "m/s", "mean speed of the floes in the strait"},
+             {"channel", "jammed", "1", "1 while no ice has passed for channel.jam_window and the funnel's ice is slower than channel.jam_speed"}};
+  }
   if (scene_.output.hdf5) {
     io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
-    h5 = std::make_unique<io::Hdf5Writer>(options_.output_dir / "results.h5", world_, info, rho_w);
+    h5 = std::make_unique<io::Hdf5Writer>(options_.output_dir / "results.h5", world_, info, rho_w, extra);
   }
   int frames = 0;
+  std::vector<double> extra_values;
   auto write_frame = [&] {
+    extra_values.clear();
+    if (channel) {
+      const ChannelSample c = channel->sample(world_);
+      extra_values = {c.area_flux, c.area_passed, c.upstream_area, c.funnel_area, c.funnel_mean_speed,
+                      static_cast<double>(c.strait_floes),
+                      c.strait_mean_speed, c.jammed ? 1.0 : 0.0};
+    }
     if (vtk) vtk->write_frame(world_);
-    if (h5) h5->write_frame(world_);
+    if (h5) h5->write_frame(world_, extra_values);
     ++frames;
   };
 
@@ -158,6 +181,10 @@ RunSummary Simulation::run() {
   s.wall = std::chrono::duration<double>(clock::now() - wall0).count();
   s.dt = dt;
   s.frames = frames;
+  if (channel) {
+    s.channel_area_passed = channel->area_passed();
+    s.channel_jam_time = channel->jam_time();
+  }
   s.output_dir = options_.output_dir;
   if (options_.profile) {
     const dynamics::StepProfile& p = world_.profile();

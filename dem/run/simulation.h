@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -36,6 +37,8 @@ struct RunSummary {
   double dt = 0.0;          // [s]
   int frames = 0;
   std::filesystem::path output_dir;
+  std::optional<double> channel_area_passed;  // scenes with a channel: net ice area through the strait [m^2]
+  std::optional<double> channel_jam_time;     // ... and when it jammed [s], if it did
 };
 
 // Checks the state for NaN/Inf and runaway motion; throws InstabilityError with a suggestion. `dt` is the step in

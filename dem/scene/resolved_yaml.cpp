@@ -140,7 +140,9 @@ std::string resolved_yaml(const Scene& s) {
       << "  funnel_length: " << fmt(ch->funnel_length) << "  # [m]\n"
       << "  opening: " << fmt(ch->opening) << "  # [m]\n"
       << "  strait_length: " << fmt(ch->strait_length) << "  # [m]\n"
-      << "  wall_thickness: " << fmt(ch->wall_thickness) << "  # [m]\n";
+      << "  wall_thickness: " << fmt(ch->wall_thickness) << "  # [m]\n"
+      << "  jam_window: " << fmt(ch->jam_window) << "  # [s] jammed: no ice through the strait entrance this long\n"
+      << "  jam_speed: " << fmt(ch->jam_speed) << "  # [m/s] ... with the funnel's ice slower than this\n";
   }
   return o.str();
 }

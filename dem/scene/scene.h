@@ -83,6 +83,8 @@ struct ChannelSpec {
   double opening = 250.0;        // strait width [m]
   double strait_length = 600.0;  // [m]
   double wall_thickness = 50.0;  // [m]
+  double jam_window = 20.0;      // jammed: no net ice through the strait entrance for this long [s] ...
+  double jam_speed = 0.1;        // ... while the ice in the funnel moves slower than this on average [m/s]
   SourceRef source;
 };
 

@@ -208,6 +208,8 @@ ChannelSpec read_channel(MapReader m) {
   m.number("opening", c.opening, positive("m"));
   m.number("strait_length", c.strait_length, positive("m"));
   m.number("wall_thickness", c.wall_thickness, positive("m"));
+  m.number("jam_window", c.jam_window, positive("s"));
+  m.number("jam_speed", c.jam_speed, positive("m/s"));
   m.finish();
   if (const std::optional<SpecIssue> issue = channel_issue(c)) {
     const auto f = m.take(issue->key.c_str());

@@ -137,6 +137,8 @@ void expect_same_settings(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.opening, y.opening);
     EXPECT_EQ(x.strait_length, y.strait_length);
     EXPECT_EQ(x.wall_thickness, y.wall_thickness);
+    EXPECT_EQ(x.jam_window, y.jam_window);
+    EXPECT_EQ(x.jam_speed, y.jam_speed);
   }
 }
 
@@ -564,7 +566,7 @@ TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
       "             corners: 6, aspect_max: 1.7, thickness: 1.5, velocity: [0.2, 0.1], seed: 18446744073709551615,\n"
       "             max_attempts: 77}\n"
       "channel: {basin_x_min: 1, basin_x_max: 2, basin_y_min: 3, basin_y_max: 400, funnel_length: 5,\n"
-      "          opening: 6, strait_length: 7, wall_thickness: 8}\n",
+      "          opening: 6, strait_length: 7, wall_thickness: 8, jam_window: 33, jam_speed: 0.02}\n",
       "all.yaml", {});
   EXPECT_EQ(s.name, "odd \"name\"");
   EXPECT_EQ(s.floe_field->corners_min, 6);
