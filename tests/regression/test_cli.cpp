@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -185,5 +186,25 @@ TEST(Cli, VortexSceneRuns) {
   const Result r = polyfloe("run " + scene + " -o " + out.string() + " --set run.duration=0.5 --set output.interval=0.25");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "floes.pvd"));
+  fs::remove_all(out);
+}
+
+TEST(Sweep, ScriptRunsAFamilyAndThePlotsFollow) {
+  // scripts/sweep.sh on one family with a tiny duration, then postprocess/plot_sweep.py on its output.
+  const fs::path out = fs::temp_directory_path() / "polyfloe_sweep";
+  fs::remove_all(out);
+  const std::string src = POLYFLOE_SOURCE_DIR;
+  const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src + "/scripts/sweep.sh -j 2 -o " +
+                          out.string() + " corners -- --set run.duration=0.02 --set output.interval=0.01 "
+                          "--set output.vtk=false 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  for (const char* m : {"k05-10", "k10-15", "k15-20"})
+    EXPECT_TRUE(fs::exists(out / "corners" / m / "results.h5")) << m;
+  const std::string plot = "/usr/bin/python3 " + src + "/postprocess/plot_sweep.py " + out.string() + " -o " +
+                           (out / "fig").string() + " > /dev/null 2>&1";
+  EXPECT_EQ(std::system(plot.c_str()), 0);
+  EXPECT_TRUE(fs::exists(out / "fig" / "sweep_flow.png"));
+  EXPECT_TRUE(fs::exists(out / "fig" / "sweep_maps_corners.png"));
+  EXPECT_NE(std::system(("bash " + src + "/scripts/sweep.sh bogus > /dev/null 2>&1").c_str()), 0);
   fs::remove_all(out);
 }
