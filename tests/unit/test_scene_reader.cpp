@@ -468,6 +468,7 @@ TEST(ResolvedYaml, RoundTripsTheExampleScenes) {
   expect_round_trip(read_scene(kSceneDir + "two_floes.yaml", {}));
   expect_round_trip(read_scene(kSceneDir + "drift_tidal.yaml", {}));
   expect_round_trip(read_scene(kSceneDir + "drift_vortex.yaml", {}));
+  expect_round_trip(read_scene(kSceneDir + "channel_realistic.yaml", {}));
 }
 
 TEST(ResolvedYaml, RoundTripsEveryFieldKind) {
