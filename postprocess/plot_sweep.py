@@ -23,6 +23,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_frames import frame_polygons  # noqa: E402  (world-frame polygons of one frame)
+
 FAMILIES = {
     "concentration": "concentration",
     "exponent": "FSD exponent",
@@ -56,21 +59,6 @@ def floe_shapes(f):
         areas.append(0.5 * np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]))
         perims.append(np.sum(np.hypot(*(q - p).T)))
     return np.array(areas), np.array(perims)
-
-
-def frame_polygons(f, k):
-    off = f["/floes/polygon_offsets"][:]
-    xy = f["/floes/polygon_xy"][:]
-    pos = f["/state/position"][k]
-    q = f["/state/orientation"][k]
-    yaw = 2.0 * np.arctan2(q[:, 3], q[:, 0])
-    polys = []
-    for i in range(len(off) - 1):
-        c, s = np.cos(yaw[i]), np.sin(yaw[i])
-        local = xy[off[i]:off[i + 1]]
-        polys.append(np.column_stack([c * local[:, 0] - s * local[:, 1] + pos[i, 0],
-                                      s * local[:, 0] + c * local[:, 1] + pos[i, 1]]))
-    return polys
 
 
 def plot_flow(root, fams, out):
