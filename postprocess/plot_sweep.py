@@ -1,16 +1,21 @@
 #!/usr/bin/python3
 """Figures of the paper's channel families (scripts/sweep.sh): flow against time and the initial fields.
 
-    /usr/bin/python3 postprocess/plot_sweep.py results/sweep -o docs/figures
+    /usr/bin/python3 postprocess/plot_sweep.py results/sweep -o docs/figures [--summary docs/data/sweep.json]
 
-Writes, for the families found under the sweep folder (concentration, exponent, corners; members in sub-folders
-holding results.h5):
+Reads <family>/<member>/s<seed>/results.h5 under the sweep folder (families concentration, exponent, corners) and
+writes:
   sweep_flow.png     per family: the mean speed of all floes, the mean speed of the floes in the strait, and the
-                     ice area passed through the strait entrance, against time (/diagnostics, /diagnostics/channel)
-  sweep_fields.png   the initial fields: size distribution (area-equivalent diameter, log bins, per family member
-                     of the exponent family) and circularity histograms (corners family)
-  sweep_maps_<family>.png  floes coloured by speed at t = 170 s and 200 s for each member (paper Fig. 11 style)
+                     ice area passed through the strait entrance, against time (/diagnostics, /diagnostics/channel):
+                     the mean over seeds as a line, the range over seeds as a band
+  sweep_fields.png   the initial fields: size distribution (area-equivalent diameter, log bins, per member of the
+                     exponent family, all seeds pooled) and circularity histograms (corners family)
+  sweep_maps_<family>.png  floes coloured by speed at t = 170 s and 200 s for each member, first seed (paper
+                     Fig. 11 style)
+  --summary FILE     per member: seeds, floe count, area passed at the end, mean speeds at 170 s / 200 s / the end,
+                     jams (mean and standard deviation over seeds); also printed as a table
 """
+import json
 import argparse
 import os
 import sys
@@ -34,15 +39,25 @@ FAMILIES = {
 
 
 def members(root, family):
+    """[(member, [results.h5 of each seed, by seed])] of one family."""
     d = os.path.join(root, family)
     if not os.path.isdir(d):
         return []
     out = []
     for m in sorted(os.listdir(d)):
-        h5 = os.path.join(d, m, "results.h5")
-        if os.path.isfile(h5):
-            out.append((m, h5))
+        md = os.path.join(d, m)
+        if not os.path.isdir(md):
+            continue
+        seeds = sorted((int(s[1:]), os.path.join(md, s, "results.h5")) for s in os.listdir(md)
+                       if s.startswith("s") and s[1:].isdigit() and os.path.isfile(os.path.join(md, s, "results.h5")))
+        if seeds:
+            out.append((m, [p for _, p in seeds]))
     return out
+
+
+def at(t, y, want):
+    """y at the frame nearest to time `want`."""
+    return float(y[int(np.argmin(np.abs(t - want)))])
 
 
 def floe_shapes(f):
@@ -64,13 +79,25 @@ def floe_shapes(f):
 def plot_flow(root, fams, out):
     fig, axes = plt.subplots(len(fams), 3, figsize=(13, 3.2 * len(fams)), squeeze=False)
     for row, fam in enumerate(fams):
-        for name, path in members(root, fam):
-            with h5py.File(path, "r") as f:
-                t = f["/time"][:]
-                axes[row, 0].plot(t, f["/diagnostics/mean_speed"][:], label=name)
-                ch = f["/diagnostics/channel"]
-                axes[row, 1].plot(t, ch["strait_mean_speed"][:], label=name)
-                axes[row, 2].plot(t, ch["area_passed"][:] / 1e3, label=name)
+        for k, (name, paths) in enumerate(members(root, fam)):
+            curves = [[], [], []]
+            t = None
+            for path in paths:
+                with h5py.File(path, "r") as f:
+                    tt = f["/time"][:]
+                    ch = f["/diagnostics/channel"]
+                    ys = [f["/diagnostics/mean_speed"][:], ch["strait_mean_speed"][:], ch["area_passed"][:] / 1e3]
+                if t is None or len(tt) < len(t):
+                    t = tt
+                for c, y in zip(curves, ys):
+                    c.append(y)
+            n = len(t)
+            colour = f"C{k}"
+            for ax, c in zip(axes[row], curves):
+                y = np.array([v[:n] for v in c])
+                ax.plot(t, y.mean(axis=0), color=colour, label=f"{name} ({len(paths)} seeds)")
+                if len(paths) > 1:
+                    ax.fill_between(t, y.min(axis=0), y.max(axis=0), color=colour, alpha=0.2, linewidth=0)
         axes[row, 0].set_ylabel(f"{FAMILIES[fam]}\nmean floe speed [m/s]")
         axes[row, 1].set_ylabel("mean speed in the strait [m/s]")
         axes[row, 2].set_ylabel("ice area through the strait [10³ m²]")
@@ -84,22 +111,76 @@ def plot_flow(root, fams, out):
     print(f"wrote {path}")
 
 
+def summarise(root, fams):
+    """Per family and member: statistics over seeds of the flow measures."""
+    table = {}
+    for fam in fams:
+        table[fam] = {}
+        for name, paths in members(root, fam):
+            rows = []
+            for path in paths:
+                with h5py.File(path, "r") as f:
+                    t = f["/time"][:]
+                    ch = f["/diagnostics/channel"]
+                    motion = f["/floes/motion"][:]
+                    jammed = ch["jammed"][:]
+                    rows.append({
+                        "floes": int(np.sum(motion == 0)),
+                        "end_time": float(t[-1]),
+                        "area_passed": float(ch["area_passed"][-1]),
+                        "mean_speed_170": at(t, f["/diagnostics/mean_speed"][:], 170.0),
+                        "mean_speed_200": at(t, f["/diagnostics/mean_speed"][:], 200.0),
+                        "strait_speed_200": at(t, ch["strait_mean_speed"][:], 200.0),
+                        "mean_speed_end": float(f["/diagnostics/mean_speed"][-1]),
+                        "jammed": bool(jammed[-1] > 0),
+                        "jam_time": float(t[int(np.argmax(jammed > 0))]) if np.any(jammed > 0) else None,
+                    })
+            entry = {"seeds": len(rows), "jammed_runs": sum(r["jammed"] for r in rows),
+                     "jam_times": [r["jam_time"] for r in rows]}
+            for key in ("floes", "end_time", "area_passed", "mean_speed_170", "mean_speed_200", "strait_speed_200",
+                        "mean_speed_end"):
+                v = np.array([r[key] for r in rows], dtype=float)
+                entry[key] = {"mean": float(v.mean()), "std": float(v.std(ddof=1)) if len(v) > 1 else 0.0,
+                              "values": [float(x) for x in v]}
+            table[fam][name] = entry
+    return table
+
+
+def print_summary(table):
+    print("| family | member | seeds | floes | area passed at end [10³ m²] | mean speed 170 s [m/s] | "
+          "mean speed 200 s [m/s] | strait speed 200 s [m/s] | jammed |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for fam, ms in table.items():
+        for name, e in ms.items():
+            def ms_(key, scale=1.0, digits=2):
+                return f"{e[key]['mean'] / scale:.{digits}f} ± {e[key]['std'] / scale:.{digits}f}"
+            print(f"| {fam} | {name} | {e['seeds']} | {ms_('floes', digits=0)} | {ms_('area_passed', 1e3, 1)} | "
+                  f"{ms_('mean_speed_170')} | {ms_('mean_speed_200')} | {ms_('strait_speed_200')} | "
+                  f"{e['jammed_runs']} of {e['seeds']} |")
+
+
 def plot_fields(root, out):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     bins = np.logspace(np.log10(5), np.log10(100), 16)
-    for name, path in members(root, "exponent") or members(root, "concentration"):
-        with h5py.File(path, "r") as f:
-            a, _ = floe_shapes(f)
+    for name, paths in members(root, "exponent") or members(root, "concentration"):
+        a = []
+        for path in paths:
+            with h5py.File(path, "r") as f:
+                a.append(floe_shapes(f)[0])
+        a = np.concatenate(a)
         d = np.sqrt(4 * a / np.pi)
         h, e = np.histogram(d, bins=bins, density=True)
-        axes[0].loglog(np.sqrt(e[1:] * e[:-1]), h, "o-", label=f"{name} ({len(d)} floes)")
+        axes[0].loglog(np.sqrt(e[1:] * e[:-1]), h, "o-", label=f"{name} ({len(d) / len(paths):.0f} floes per field)")
     axes[0].set_xlabel("size (area-equivalent diameter) [m]")
     axes[0].set_ylabel("probability density [1/m]")
     axes[0].set_title("initial size distributions")
-    for name, path in members(root, "corners"):
-        with h5py.File(path, "r") as f:
-            a, p = floe_shapes(f)
-        c = np.sqrt(4 * np.pi * a) / p
+    for name, paths in members(root, "corners"):
+        c = []
+        for path in paths:
+            with h5py.File(path, "r") as f:
+                a, p = floe_shapes(f)
+            c.append(np.sqrt(4 * np.pi * a) / p)
+        c = np.concatenate(c)
         axes[1].hist(c, bins=np.linspace(0.6, 1.0, 41), histtype="step", density=True,
                      label=f"{name}: mean {c.mean():.3f}")
     axes[1].set_xlabel("circularity (Eq. 17) [-]")
@@ -119,8 +200,8 @@ def plot_maps(root, fam, out, times=(170.0, 200.0)):
     if not ms:
         return
     fig, axes = plt.subplots(len(ms), len(times), figsize=(5.5 * len(times), 2.8 * len(ms)), squeeze=False)
-    for r, (name, path) in enumerate(ms):
-        with h5py.File(path, "r") as f:
+    for r, (name, paths) in enumerate(ms):
+        with h5py.File(paths[0], "r") as f:
             t = f["/time"][:]
             motion = f["/floes/motion"][:]
             for c, want in enumerate(times):
@@ -137,7 +218,7 @@ def plot_maps(root, fam, out, times=(170.0, 200.0)):
                 ax.set_xlim(0, 2000)
                 ax.set_ylim(-50, 1050)
                 ax.set_aspect("equal")
-                ax.set_title(f"{name}, t = {t[k]:.0f} s", fontsize=9)
+                ax.set_title(f"{name} ({os.path.basename(os.path.dirname(paths[0]))}), t = {t[k]:.0f} s", fontsize=9)
         fig.colorbar(pc, ax=axes[r, :].tolist(), label="speed [m/s]", shrink=0.8)
     path = os.path.join(out, f"sweep_maps_{fam}.png")
     fig.savefig(path, dpi=110)
@@ -148,16 +229,24 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("sweep", help="the folder scripts/sweep.sh wrote (results/sweep)")
     ap.add_argument("-o", "--out", default="docs/figures", help="output folder (default docs/figures)")
+    ap.add_argument("--summary", help="write the per-member statistics over seeds to this JSON file")
     a = ap.parse_args()
     fams = [f for f in FAMILIES if members(a.sweep, f)]
     if not fams:
-        sys.stderr.write(f"plot_sweep.py: no <family>/<member>/results.h5 under {a.sweep}\n")
+        sys.stderr.write(f"plot_sweep.py: no <family>/<member>/s<seed>/results.h5 under {a.sweep}\n")
         return 1
     os.makedirs(a.out, exist_ok=True)
     plot_flow(a.sweep, fams, a.out)
     plot_fields(a.sweep, a.out)
     for fam in fams:
         plot_maps(a.sweep, fam, a.out)
+    table = summarise(a.sweep, fams)
+    print_summary(table)
+    if a.summary:
+        os.makedirs(os.path.dirname(os.path.abspath(a.summary)), exist_ok=True)
+        with open(a.summary, "w") as fh:
+            json.dump(table, fh, indent=1)
+        print(f"wrote {a.summary}")
     return 0
 
 

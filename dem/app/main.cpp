@@ -184,13 +184,22 @@ int main(int argc, char** argv) {
                                        : std::string("no jam"))
                 << " (results.h5: /diagnostics/channel)\n";
     }
-    std::cout << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n"
-              << "  floes.pvd, contacts.pvd  (open in ParaView)\n"
-              << "  results.h5               (time series; see docs/user-guide.md)\n";
+    std::cout << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n";
+    if (sc.output.vtk) {
+      std::string series = "floes.pvd";
+      if (sc.output.contacts) series += ", contacts.pvd";
+      if (sc.output.velocity_grid.enabled) series += ", velocity.pvd";
+      std::cout << "  " << series << std::string(series.size() < 24 ? 24 - series.size() : 1, ' ')
+                << " (open in ParaView)\n";
+    }
+    if (sc.output.hdf5) std::cout << "  results.h5               (time series; see docs/user-guide.md)\n";
     return run::kExitOk;
   } catch (const run::InstabilityError& e) {
     std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
     return run::kExitUnstable;
+  } catch (const scene::SceneError& e) {  // a setting found unusable once the world exists, before any output
+    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
+    return run::kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "\npolyfloe: error: " << e.what() << "\n";
     return run::kExitFailure;

@@ -40,6 +40,7 @@ struct Hdf5Writer::Impl {
   std::vector<double> centre_z;  // height of each body's centre of mass: h/2 - draft [m]
   int frames = 0;
   Dataset time;
+  hdf5::Group diagnostics;
   Dataset position, orientation, velocity, angular_velocity;
   Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum,
       angular_momentum;
@@ -117,7 +118,8 @@ struct Hdf5Writer::Impl {
                               "unit quaternion (w, x, y, z) of the body frame");
     velocity = root_series(state, "velocity", DType::f64, {bodies, 3}, 1, "m/s");
     angular_velocity = root_series(state, "angular_velocity", DType::f64, {bodies, 3}, 1, "rad/s");
-    auto diag = root.create_group("diagnostics");
+    diagnostics = root.create_group("diagnostics");
+    auto& diag = diagnostics;
     kinetic_energy = root_series(diag, "kinetic_energy", DType::f64, {}, kSeriesChunk, "J",
                                  "dynamic bodies, translation + rotation");
     contact_count = root_series(diag, "contact_count", DType::i64, {}, kSeriesChunk, "1");
@@ -229,6 +231,8 @@ Hdf5Writer::Hdf5Writer(const std::filesystem::path& file, const dynamics::World&
 Hdf5Writer::~Hdf5Writer() = default;
 Hdf5Writer::Hdf5Writer(Hdf5Writer&&) noexcept = default;
 Hdf5Writer& Hdf5Writer::operator=(Hdf5Writer&&) noexcept = default;
+
+hdf5::Group& Hdf5Writer::diagnostics() { return impl_->diagnostics; }
 
 void Hdf5Writer::write_frame(const dynamics::World& world, std::span<const double> extra) {
   impl_->write_frame(world, extra);

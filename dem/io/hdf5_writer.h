@@ -22,6 +22,8 @@
 #include <vector>
 #include <string>
 
+#include "io/hdf5_file.h"
+
 namespace polyfloe::dynamics {
 class World;
 }
@@ -58,6 +60,9 @@ class Hdf5Writer {
   void write_frame(const dynamics::World& world, std::span<const double> extra = {});
   void flush();
   int frames() const;
+  // The /diagnostics group, for series the driver writes itself: append their row for a frame before
+  // write_frame(), which flushes the file.
+  hdf5::Group& diagnostics();
   const std::filesystem::path& path() const;
 
  private:

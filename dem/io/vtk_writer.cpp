@@ -6,7 +6,9 @@
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -14,6 +16,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkTypeInt32Array.h>
 #include <vtkTypeUInt64Array.h>
+#include <vtkXMLImageDataWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <charconv>
@@ -50,10 +53,10 @@ std::string xml_escape(const std::string& s) {
   return out;
 }
 
-std::string frame_name(const char* stem, int frame) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%s_%06d.vtp", stem, frame);
-  return buf;
+std::string frame_name(const std::string& stem, int frame, const char* extension = ".vtp") {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "_%06d", frame);
+  return stem + buf + extension;
 }
 
 template <class Array>
@@ -85,10 +88,10 @@ class ErrorCatcher {
   std::string messages_;
 };
 
-// Writes `data` to `target` via a temporary sibling: binary appended, zlib-compressed, 64-bit headers.
-void write_polydata(vtkPolyData* data, const fs::path& target) {
+// Writes `data` to `target` via a temporary sibling with `writer` (a vtkXML*Writer): binary appended,
+// zlib-compressed, 64-bit headers.
+void write_xml(vtkXMLWriter* writer, vtkDataObject* data, const fs::path& target) {
   const fs::path tmp = temporary_sibling(target);
-  vtkNew<vtkXMLPolyDataWriter> writer;
   ErrorCatcher errors(writer);
   writer->SetFileName(tmp.c_str());
   writer->SetInputData(data);
@@ -101,19 +104,26 @@ void write_polydata(vtkPolyData* data, const fs::path& target) {
     std::error_code ignored;
     fs::remove(tmp, ignored);
     throw IoError("cannot write " + target.string() + ": " +
-                  (errors.messages().empty() ? std::string("vtkXMLPolyDataWriter failed") : errors.messages()));
+                  (errors.messages().empty() ? std::string(writer->GetClassName()) + " failed" : errors.messages()));
   }
   commit_file_atomic(tmp, target);
 }
 
-void add_time(vtkPolyData* data, const dynamics::World& world) {
+void write_polydata(vtkPolyData* data, const fs::path& target) {
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  write_xml(writer, data, target);
+}
+
+void add_time(vtkDataObject* data, double t, std::uint64_t step) {
   auto time = make_array<vtkDoubleArray>("TIME", 1, 1);
-  time->SetValue(0, world.time());
+  time->SetValue(0, t);
   data->GetFieldData()->AddArray(time);
   auto cycle = make_array<vtkTypeUInt64Array>("CYCLE", 1, 1);
-  cycle->SetValue(0, world.step_count());
+  cycle->SetValue(0, step);
   data->GetFieldData()->AddArray(cycle);
 }
+
+void add_time(vtkDataObject* data, const dynamics::World& world) { add_time(data, world.time(), world.step_count()); }
 
 // 0, 1, ..., count - 1
 vtkSmartPointer<vtkIdTypeArray> iota(vtkIdType count) {
@@ -314,6 +324,44 @@ void VtkSeriesWriter::write_frame(const dynamics::World& world) {
   // Collections last: they only ever list frames that are complete on disk.
   floes_pvd_.add(world.time(), floes_file);
   if (write_contacts_) contacts_pvd_.add(world.time(), contacts_file);
+  ++frames_;
+}
+
+
+VtkImageSeriesWriter::VtkImageSeriesWriter(const fs::path& dir, std::string stem, const ImageGrid& grid)
+    : dir_(dir), stem_(std::move(stem)), grid_(grid), pvd_(dir / (stem_ + ".pvd")) {
+  if (grid.nx < 1 || grid.ny < 1 || !(grid.cell > 0.0) || !std::isfinite(grid.cell))
+    throw IoError("VTK image output " + (dir / stem_).string() + ": the grid needs positive cell size and counts");
+  std::error_code ec;
+  fs::create_directories(dir / stem_, ec);
+  if (ec) throw IoError("cannot create VTK output folder " + (dir / stem_).string() + ": " + ec.message());
+}
+
+void VtkImageSeriesWriter::write_frame(double time, std::uint64_t step, std::span<const CellField> fields) {
+  const std::string file = stem_ + "/" + frame_name(stem_, frames_, ".vti");
+  const auto cells = static_cast<vtkIdType>(grid_.nx) * grid_.ny;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(grid_.nx + 1, grid_.ny + 1, 1);  // points at the cell corners
+  image->SetOrigin(grid_.x0, grid_.y0, 0.0);
+  image->SetSpacing(grid_.cell, grid_.cell, 1.0);
+  for (const CellField& f : fields) {
+    if (f.components < 1 || f.values.size() != static_cast<std::size_t>(cells * f.components))
+      throw IoError("cannot write " + (dir_ / file).string() + ": array '" + f.name + "' has " +
+                    std::to_string(f.values.size()) + " values for " + std::to_string(cells) + " cells x " +
+                    std::to_string(f.components) + " components");
+    const int out_components = f.components == 2 ? 3 : f.components;
+    auto a = make_array<vtkFloatArray>(f.name.c_str(), out_components, cells);
+    float* dst = a->GetPointer(0);
+    for (vtkIdType c = 0; c < cells; ++c) {
+      for (int k = 0; k < f.components; ++k) dst[c * out_components + k] = f.values[static_cast<std::size_t>(c * f.components + k)];
+      if (out_components != f.components) dst[c * out_components + 2] = 0.0f;
+    }
+    image->GetCellData()->AddArray(a);
+  }
+  add_time(image, time, step);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  write_xml(writer, image, dir_ / file);
+  pvd_.add(time, file);
   ++frames_;
 }
 

@@ -8,8 +8,11 @@
 // complete frames. VTK itself stays behind this header (only the .cpp includes it).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace polyfloe::dynamics {
 class World;
@@ -53,6 +56,40 @@ class VtkSeriesWriter {
   int frames_ = 0;
   PvdCollection floes_pvd_;
   PvdCollection contacts_pvd_;
+};
+
+// A regular grid of cells in the plane z = 0: cell (j, i) spans x0 + [i, i+1] cell, y0 + [j, j+1] cell.
+struct ImageGrid {
+  double x0 = 0.0, y0 = 0.0;  // lower-left corner [m]
+  double cell = 1.0;          // cell size [m]
+  int nx = 1, ny = 1;         // cells along x and y
+  std::size_t cells() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny); }
+};
+
+// One cell-centred array: values [ny * nx * components], x fastest. Two-component arrays are written as 3-vectors
+// with z = 0 so ParaView can draw them as glyphs and stream lines.
+struct CellField {
+  std::string name;
+  int components = 1;
+  std::span<const float> values;
+};
+
+// A series of grids as VTK image data: DIR/<stem>.pvd and DIR/<stem>/<stem>_NNNNNN.vti, written like the floe
+// frames (temporary file + rename, collection rewritten after each complete frame).
+class VtkImageSeriesWriter {
+ public:
+  VtkImageSeriesWriter(const std::filesystem::path& dir, std::string stem, const ImageGrid& grid);
+  // Writes frame number frames() at `time` [s] (step `step`). Throws IoError naming the file on failure, or if a
+  // field's size does not match the grid.
+  void write_frame(double time, std::uint64_t step, std::span<const CellField> fields);
+  int frames() const { return frames_; }
+
+ private:
+  std::filesystem::path dir_;
+  std::string stem_;
+  ImageGrid grid_;
+  int frames_ = 0;
+  PvdCollection pvd_;
 };
 
 }  // namespace polyfloe::io

@@ -1,6 +1,7 @@
 #include "run/simulation.h"
 
 #include "run/channel_monitor.h"
+#include "run/velocity_grid.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,23 +29,50 @@ std::string join(const std::vector<std::string>& v, const char* sep) {
 }
 
 // Removes the outputs of an earlier run in the same folder, and nothing else: frame files named as this program
-// names them (floes/floes_NNNNNN.vtp, contacts/contacts_NNNNNN.vtp, and hidden temporaries), the series and the
-// HDF5 file. A frame folder is removed only if that leaves it empty.
+// names them (floes/floes_NNNNNN.vtp, contacts/contacts_NNNNNN.vtp, velocity/velocity_NNNNNN.vti, and hidden
+// temporaries), the series and the HDF5 file. A frame folder is removed only if that leaves it empty.
 void clear_previous_outputs(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  for (const std::string name : {"floes", "contacts"}) {
+  for (const auto& [name, extension] : {std::pair<std::string, std::string>{"floes", ".vtp"},
+                                        {"contacts", ".vtp"}, {"velocity", ".vti"}}) {
     const fs::path sub = dir / name;
     if (!fs::is_directory(sub, ec)) continue;
     for (const auto& entry : fs::directory_iterator(sub, ec)) {
       const std::string f = entry.path().filename().string();
-      const bool frame = f.rfind(name + "_", 0) == 0 && entry.path().extension() == ".vtp";
+      const bool frame = f.rfind(name + "_", 0) == 0 && entry.path().extension() == extension;
       const bool temporary = f.rfind("." + name + "_", 0) == 0;
       if (entry.is_regular_file(ec) && (frame || temporary)) fs::remove(entry.path(), ec);
     }
     fs::remove(sub, ec);  // only succeeds when empty
   }
-  for (const char* name : {"floes.pvd", "contacts.pvd", "results.h5", "scene.resolved.yaml"}) fs::remove(dir / name, ec);
+  for (const char* name : {"floes.pvd", "contacts.pvd", "velocity.pvd", "results.h5", "scene.resolved.yaml"})
+    fs::remove(dir / name, ec);
+}
+
+// The velocity grid the scene asks for (its region, or every body at t = 0), checked against the size limit.
+GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const dynamics::World& world) {
+  GridGeometry geo;
+  if (g.region) {
+    const auto& r = *g.region;
+    geo.x0 = r[0];
+    geo.y0 = r[1];
+    geo.cell = g.cell;
+    geo.nx = static_cast<int>(std::max(1.0, std::ceil((r[2] - r[0]) / g.cell)));
+    geo.ny = static_cast<int>(std::max(1.0, std::ceil((r[3] - r[1]) / g.cell)));
+    return geo;
+  }
+  const double cells = [&] {  // before building it: the automatic region may be huge
+    GridGeometry unit = VelocityGrid::covering(world, g.cell);
+    return static_cast<double>(unit.nx) * unit.ny;
+  }();
+  if (cells > scene::VelocityGridSettings::kMaxCells) {
+    throw scene::SceneError("output.velocity_grid: the bodies span " + std::to_string(static_cast<long long>(cells)) +
+                            " cells of " + std::to_string(g.cell) + " m (at most " +
+                            std::to_string(static_cast<long long>(scene::VelocityGridSettings::kMaxCells)) +
+                            "): raise output.velocity_grid.cell or give output.velocity_grid.region");
+  }
+  return VelocityGrid::covering(world, g.cell);
 }
 
 }  // namespace
@@ -111,6 +139,12 @@ RunSummary Simulation::run() {
   const double dt = scene::time_step(scene_, world_);
   const double v_ref = scene::reference_speed(scene_);
   const double t_end = scene_.time.duration;
+  const double interval = scene_.output.interval;
+
+  const scene::VelocityGridSettings& grid_settings = scene_.output.velocity_grid;
+  std::optional<GridGeometry> grid_geometry;
+  if (grid_settings.enabled && (scene_.output.vtk || scene_.output.hdf5))
+    grid_geometry = velocity_grid_geometry(grid_settings, world_);  // may refuse before any output exists
 
   fs::create_directories(options_.output_dir);
   clear_previous_outputs(options_.output_dir);
@@ -137,6 +171,11 @@ RunSummary Simulation::run() {
     io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
     h5 = std::make_unique<io::Hdf5Writer>(options_.output_dir / "results.h5", world_, info, rho_w, extra);
   }
+  std::optional<VelocityGridRecorder> velocity_grid;
+  if (grid_geometry) {
+    velocity_grid.emplace(*grid_geometry, interval / grid_settings.samples_per_frame,
+                          scene_.output.vtk ? options_.output_dir : fs::path(), h5.get());
+  }
   int frames = 0;
   std::vector<double> extra_values;
   auto write_frame = [&] {
@@ -148,6 +187,7 @@ RunSummary Simulation::run() {
                       c.strait_mean_speed, c.jammed ? 1.0 : 0.0};
     }
     if (vtk) vtk->write_frame(world_);
+    if (velocity_grid) velocity_grid->write_frame(world_);
     if (h5) h5->write_frame(world_, extra_values);
     ++frames;
   };
@@ -158,7 +198,6 @@ RunSummary Simulation::run() {
 
   // Steps of equal size; the last one is shortened to land on t_end. Frames at the first step at or after each
   // multiple of the output interval.
-  const double interval = scene_.output.interval;
   double next_frame = interval;
   while (world_.time() < t_end * (1.0 - 1e-12)) {
     const double h = std::min(dt, t_end - world_.time());
@@ -167,6 +206,7 @@ RunSummary Simulation::run() {
     // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check
     // costs a few ns per body against ~200 ns per body for the step.
     check_stability(world_, dt, v_ref);
+    if (velocity_grid) velocity_grid->after_step(world_);
     if (last || world_.time() >= next_frame * (1.0 - 1e-12)) {
       write_frame();
       next_frame = interval * (std::floor(world_.time() / interval * (1.0 + 1e-12)) + 1.0);

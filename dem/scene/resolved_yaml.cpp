@@ -69,6 +69,16 @@ std::string resolved_yaml(const Scene& s) {
     << "  vtk: " << on(s.output.vtk) << "\n"
     << "  contacts: " << on(s.output.contacts) << "\n"
     << "  hdf5: " << on(s.output.hdf5) << "\n";
+  const VelocityGridSettings& g = s.output.velocity_grid;
+  o << "  velocity_grid:\n"
+    << "    enabled: " << on(g.enabled) << "\n"
+    << "    cell: " << fmt(g.cell) << "  # [m]\n"
+    << "    region: "
+    << (g.region ? "[" + fmt((*g.region)[0]) + ", " + fmt((*g.region)[1]) + ", " + fmt((*g.region)[2]) + ", " +
+                       fmt((*g.region)[3]) + "]"
+                 : std::string("auto"))
+    << "  # [m] xmin, ymin, xmax, ymax\n"
+    << "    samples_per_frame: " << g.samples_per_frame << "\n";
   const contact::ContactLawSettings& c = s.world.contact;
   o << "ice:\n"
     << "  density: " << fmt(s.ice_density) << "  # [kg/m^3]\n"

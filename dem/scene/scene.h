@@ -3,6 +3,7 @@
 // with their units and ranges in docs/scene-reference.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -33,11 +34,22 @@ struct TimeSettings {
                                           // empty = max(1 m/s, steady free-drift speed)
 };
 
+// Ice velocity averaged on a grid of cells over each output interval (run/velocity_grid.h), written to results.h5
+// (/diagnostics/velocity_grid) and as VTK image data (velocity.pvd, velocity/velocity_NNNNNN.vti).
+struct VelocityGridSettings {
+  static constexpr double kMaxCells = 4.0e6;     // a larger grid is refused (memory, file size)
+  bool enabled = false;
+  double cell = 10.0;                            // cell size [m], > 0
+  std::optional<std::array<double, 4>> region;   // [m] xmin, ymin, xmax, ymax; empty = auto: every body at t = 0
+  int samples_per_frame = 10;                    // samples per output interval, evenly spaced [-], 1..1000
+};
+
 struct OutputSettings {
   double interval = 5.0;      // simulated time between frames [s], > 0
   bool vtk = true;            // VTK .vtp frames + .pvd series
   bool contacts = true;       // contact series (.vtp + .pvd) alongside the floes
   bool hdf5 = true;           // results.h5
+  VelocityGridSettings velocity_grid;
 };
 
 // A floe (or wall, or plate) listed explicitly.

@@ -44,11 +44,45 @@ void read_run(MapReader m, TimeSettings& t) {
   m.finish();
 }
 
+// A rectangle [xmin, ymin, xmax, ymax] [m] with xmax > xmin and ymax > ymin.
+std::array<double, 4> to_box(const Context& ctx, const Field& f) {
+  const std::string what = "a list of 4 numbers [xmin, ymin, xmax, ymax] [m]";
+  const std::vector<Field> items = list_items(ctx, f, what);
+  if (items.size() != 4) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
+  std::array<double, 4> r{};
+  for (std::size_t i = 0; i < 4; ++i) r[i] = to_number(ctx, items[i], any("m"));
+  if (!(r[2] > r[0])) ctx.fail(items[2], "xmax = " + fmt(r[2]) + " must be > xmin = " + fmt(r[0]) + " [m]");
+  if (!(r[3] > r[1])) ctx.fail(items[3], "ymax = " + fmt(r[3]) + " must be > ymin = " + fmt(r[1]) + " [m]");
+  return r;
+}
+
+void read_velocity_grid(MapReader m, VelocityGridSettings& g) {
+  const Context& ctx = m.context();
+  m.boolean("enabled", g.enabled);
+  m.number("cell", g.cell, positive("m"));
+  if (auto f = m.take("region")) {
+    if (plain_scalar(f->value) && f->value.Scalar() == "auto") g.region.reset();
+    else g.region = to_box(ctx, *f);
+  }
+  m.integer("samples_per_frame", g.samples_per_frame, 1, 1000);
+  if (g.region) {  // the automatic region is checked when the world is built
+    const double cells = std::ceil(((*g.region)[2] - (*g.region)[0]) / g.cell) *
+                         std::ceil(((*g.region)[3] - (*g.region)[1]) / g.cell);
+    if (cells > VelocityGridSettings::kMaxCells) {
+      const auto f = m.take("cell");
+      ctx.fail(f ? *f : m.self(), "the velocity grid would have " + fmt(cells) + " cells (at most " +
+                                      fmt(VelocityGridSettings::kMaxCells) + "): raise output.velocity_grid.cell or shrink its region");
+    }
+  }
+  m.finish();
+}
+
 void read_output(MapReader m, OutputSettings& o) {
   m.number("interval", o.interval, positive("s"));
   m.boolean("vtk", o.vtk);
   m.boolean("contacts", o.contacts);
   m.boolean("hdf5", o.hdf5);
+  read_velocity_grid(m.block("velocity_grid"), o.velocity_grid);
   m.finish();
 }
 
@@ -150,13 +184,7 @@ FloeFieldSpec read_floe_field(MapReader m) {
   FloeFieldSpec s;
   s.source.where = ctx.where(m.self());
   if (auto f = m.take("region")) {
-    const std::string what = "a list of 4 numbers [xmin, ymin, xmax, ymax] [m]";
-    const std::vector<Field> items = list_items(ctx, *f, what);
-    if (items.size() != 4) ctx.fail(*f, "expected " + what + ", got " + describe(f->value));
-    double r[4];
-    for (int i = 0; i < 4; ++i) r[i] = to_number(ctx, items[static_cast<std::size_t>(i)], any("m"));
-    if (!(r[2] > r[0])) ctx.fail(items[2], "xmax = " + fmt(r[2]) + " must be > xmin = " + fmt(r[0]) + " [m]");
-    if (!(r[3] > r[1])) ctx.fail(items[3], "ymax = " + fmt(r[3]) + " must be > ymin = " + fmt(r[1]) + " [m]");
+    const std::array<double, 4> r = to_box(ctx, *f);
     s.region_min = {r[0], r[1]};
     s.region_max = {r[2], r[3]};
   }

@@ -189,22 +189,50 @@ TEST(Cli, VortexSceneRuns) {
   fs::remove_all(out);
 }
 
-TEST(Sweep, ScriptRunsAFamilyAndThePlotsFollow) {
-  // scripts/sweep.sh on one family with a tiny duration, then postprocess/plot_sweep.py on its output.
+TEST(Sweep, ScriptRunsFamiliesPerSeedAndThePlotsFollow) {
+  // scripts/sweep.sh on two families and two seeds with a tiny duration, then postprocess/plot_sweep.py on its output.
   const fs::path out = fs::temp_directory_path() / "polyfloe_sweep";
   fs::remove_all(out);
   const std::string src = POLYFLOE_SOURCE_DIR;
-  const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src + "/scripts/sweep.sh -j 2 -o " +
-                          out.string() + " corners -- --set run.duration=0.02 --set output.interval=0.01 "
-                          "--set output.vtk=false 2>&1";
+  const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src + "/scripts/sweep.sh -j 2 -s 1,2 -o " +
+                          out.string() + " concentration exponent -- --set run.duration=0.02 --set output.interval=0.01 "
+                          "--set output.vtk=false > /dev/null 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
-  for (const char* m : {"k05-10", "k10-15", "k15-20"})
-    EXPECT_TRUE(fs::exists(out / "corners" / m / "results.h5")) << m;
+  for (const char* m : {"concentration/c0.50", "concentration/c0.60", "exponent/a1.2", "exponent/a2.0"}) {
+    for (const char* seed : {"s1", "s2"}) EXPECT_TRUE(fs::exists(out / m / seed / "results.h5")) << m << " " << seed;
+  }
+  // 50 %, alpha 2, 5-10 corners is in both families: it runs once, the second family links to it.
+  EXPECT_TRUE(fs::is_symlink(out / "exponent" / "a2.0" / "s2"));
+  EXPECT_FALSE(fs::is_symlink(out / "concentration" / "c0.50" / "s2"));
   const std::string plot = "/usr/bin/python3 " + src + "/postprocess/plot_sweep.py " + out.string() + " -o " +
-                           (out / "fig").string() + " > /dev/null 2>&1";
+                           (out / "fig").string() + " --summary " + (out / "summary.json").string() + " > /dev/null 2>&1";
   EXPECT_EQ(std::system(plot.c_str()), 0);
   EXPECT_TRUE(fs::exists(out / "fig" / "sweep_flow.png"));
-  EXPECT_TRUE(fs::exists(out / "fig" / "sweep_maps_corners.png"));
+  EXPECT_TRUE(fs::exists(out / "fig" / "sweep_maps_exponent.png"));
+  std::ifstream summary(out / "summary.json");
+  const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"a1.2\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"seeds\": 2"), std::string::npos) << text;
   EXPECT_NE(std::system(("bash " + src + "/scripts/sweep.sh bogus > /dev/null 2>&1").c_str()), 0);
+  EXPECT_NE(std::system(("bash " + src + "/scripts/sweep.sh -s x > /dev/null 2>&1").c_str()), 0);
+  fs::remove_all(out);
+}
+
+TEST(Cli, VelocityGridTooLargeIsRefusedBeforeAnyOutput) {
+  // The automatic grid spans every body: 1 m cells over the channel's 2.2 km x 1.1 km are too many.
+  const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/channel.yaml";
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_grid";
+  fs::remove_all(out);
+  const Result r = polyfloe("run " + scene + " -o " + out.string() + " --set output.velocity_grid.cell=0.5");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("output.velocity_grid: the bodies span"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("raise output.velocity_grid.cell"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // A grid that fits runs and lists its series.
+  const Result ok = polyfloe("run " + scene + " -o " + out.string() +
+                             " --set run.duration=0.01 --set output.interval=0.005 --set output.contacts=false");
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("floes.pvd, velocity.pvd"), std::string::npos) << ok.output;
+  EXPECT_TRUE(fs::exists(out / "velocity" / "velocity_000002.vti"));
   fs::remove_all(out);
 }

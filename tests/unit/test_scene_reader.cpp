@@ -10,34 +10,10 @@
 #include "forcing/drift.h"
 #include "scene/floe_field.h"
 #include "scene/scene_reader.h"
+#include "scene_test_support.h"
 
 namespace polyfloe::scene {
 namespace {
-
-const std::string kSceneDir = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/";
-
-// The smallest valid scene: one floe, everything else default.
-const char* kOneFloe =
-    "floes:\n"
-    "  - regular: {sides: 6, radius: 5}\n";
-
-// The message of the SceneError that `f` throws ("" if none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-std::string parse_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  return error_of([&] { parse_scene(text, "t.yaml", overrides); });
-}
-
-bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // Every setting of two scenes, compared field by field.
 
@@ -68,6 +44,10 @@ void expect_same_settings(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.output.vtk, b.output.vtk);
   EXPECT_EQ(a.output.contacts, b.output.contacts);
   EXPECT_EQ(a.output.hdf5, b.output.hdf5);
+  EXPECT_EQ(a.output.velocity_grid.enabled, b.output.velocity_grid.enabled);
+  EXPECT_EQ(a.output.velocity_grid.cell, b.output.velocity_grid.cell);
+  EXPECT_EQ(a.output.velocity_grid.region, b.output.velocity_grid.region);
+  EXPECT_EQ(a.output.velocity_grid.samples_per_frame, b.output.velocity_grid.samples_per_frame);
   EXPECT_EQ(a.ice_density, b.ice_density);
   const auto &ca = a.world.contact, &cb = b.world.contact;
   EXPECT_EQ(ca.youngs_modulus, cb.youngs_modulus);
