@@ -5,7 +5,10 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
+
+#include "geometry/voronoi.h"
 
 namespace polyfloe::scene {
 
@@ -129,6 +132,80 @@ void check_spec(const FloeFieldSpec& s) {
   if (!(s.thickness > 0.0)) fail("thickness must be > 0");
   if (s.max_attempts < 1) fail("max_attempts must be >= 1");
 }
+
+// Floe outlines cut from Poisson-Voronoi tessellations of the unit square: interior cells (not touching the square's
+// sides, which clip) whose corner count lies in the spec's range, each normalised to unit area about its centroid.
+// Corners closer than kMergeFraction of the cell's perimeter are merged first (a Voronoi cell can have edges a
+// millionth of its size, which no contact model resolves), and the count is taken after merging.
+class VoronoiShapes {
+ public:
+  static constexpr int kSitesPerBatch = 4096;
+  static constexpr int kMaxBatches = 16;
+  static constexpr std::size_t kWanted = 1024;  // distinct outlines to draw from
+  static constexpr std::size_t kMinimum = 32;   // fewer than this in range: refuse
+  static constexpr double kMergeFraction = 1e-3;
+
+  VoronoiShapes(const FloeFieldSpec& spec, FieldRandom& rng) {
+    const geometry::Aabb unit{{0.0, 0.0}, {1.0, 1.0}};
+    std::vector<Vec2> sites(kSitesPerBatch);
+    int batches = 0;
+    for (; batches < kMaxBatches && shapes_.size() < kWanted; ++batches) {
+      for (Vec2& x : sites) x = {rng.uniform(1e-9, 1.0 - 1e-9), rng.uniform(1e-9, 1.0 - 1e-9)};
+      for (std::vector<Vec2>& cell : geometry::voronoi_cells(sites, unit)) {
+        const bool clipped = std::any_of(cell.begin(), cell.end(), [](const Vec2& v) {
+          return v.x() <= 1e-9 || v.y() <= 1e-9 || v.x() >= 1.0 - 1e-9 || v.y() >= 1.0 - 1e-9;
+        });
+        if (clipped) continue;
+        merge_short_edges(cell);
+        const int k = static_cast<int>(cell.size());
+        if (k < spec.corners_min || k > spec.corners_max || !geometry::convexity_error(cell).empty()) continue;
+        const geometry::PolygonProperties props = geometry::polygon_properties(cell);
+        const double scale = 1.0 / std::sqrt(props.area);
+        for (Vec2& v : cell) v = scale * (v - props.centroid);
+        shapes_.push_back(std::move(cell));
+      }
+    }
+    if (shapes_.size() < kMinimum) {
+      std::ostringstream msg;
+      msg << prefix(spec) << "floe_field.corners: only " << shapes_.size() << " of "
+          << batches * kSitesPerBatch << " Voronoi cells have " << spec.corners_min << " to " << spec.corners_max
+          << " corners (a Poisson-Voronoi cell has 6 on average and rarely more than 10); with shape: voronoi use "
+             "a range that reaches below 12 corners, or shape: ellipse";
+      throw SceneError(msg.str());
+    }
+  }
+
+  // A random outline of the pool, randomly rotated, with the area of a circle of diameter `size` [m].
+  std::vector<Vec2> draw(FieldRandom& rng, double size) const {
+    const std::vector<Vec2>& unit = shapes_[static_cast<std::size_t>(rng.uniform_int(0, static_cast<int>(shapes_.size()) - 1))];
+    const double turn = rng.uniform(0.0, 2.0 * std::numbers::pi);
+    const double c = std::cos(turn), s = std::sin(turn), scale = std::sqrt(circle_area(size));
+    std::vector<Vec2> v;
+    v.reserve(unit.size());
+    for (const Vec2& x : unit) v.push_back(scale * geometry::rotate(x, c, s));
+    return v;
+  }
+  std::size_t size() const { return shapes_.size(); }
+
+ private:
+  // Drops the later corner of every edge shorter than kMergeFraction x perimeter (a convex polygon stays convex
+  // when a corner is removed).
+  static void merge_short_edges(std::vector<Vec2>& v) {
+    double perimeter = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) perimeter += (v[(i + 1) % v.size()] - v[i]).norm();
+    const double shortest = kMergeFraction * perimeter;
+    for (std::size_t i = 0; v.size() > 3 && i < v.size();) {
+      if ((v[(i + 1) % v.size()] - v[i]).norm() < shortest) {
+        v.erase(v.begin() + static_cast<std::ptrdiff_t>((i + 1) % v.size()));
+        if (i >= v.size()) i = 0;
+      } else {
+        ++i;
+      }
+    }
+  }
+
+  std::vector<std::vector<Vec2>> shapes_;
+};
 
 }  // namespace
 
@@ -270,10 +347,20 @@ FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamic
   std::uint32_t current_stamp = 0;
 
   field.floes.reserve(sizes.size());
+  std::optional<VoronoiShapes> voronoi;  // its own random stream: ellipse fields stay as they were
+  if (spec.shape == FloeShape::voronoi) {
+    FieldRandom pool_rng(mix_seed(spec.seed, 2));
+    voronoi.emplace(spec, pool_rng);
+  }
   for (std::size_t f = 0; f < sizes.size(); ++f) {
     const double size = sizes[f];
-    const int corners = shape_rng.uniform_int(spec.corners_min, spec.corners_max);
-    const std::vector<Vec2> raw = random_floe_polygon(shape_rng, corners, size, spec.aspect_max);
+    std::vector<Vec2> raw;
+    if (voronoi) {
+      raw = voronoi->draw(shape_rng, size);
+    } else {
+      const int corners = shape_rng.uniform_int(spec.corners_min, spec.corners_max);
+      raw = random_floe_polygon(shape_rng, corners, size, spec.aspect_max);
+    }
     auto shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(raw));
     PreparedPolygon body = prepare(shape->vertices());
     const double gap = placement_clearance(size);  // sizes descend: this floe is the smaller of any pair [m]

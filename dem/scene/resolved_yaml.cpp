@@ -135,7 +135,8 @@ std::string resolved_yaml(const Scene& s) {
       << "  size: {min: " << fmt(f->size_min) << ", max: " << fmt(f->size_max) << ", exponent: " << fmt(f->exponent)
       << "}  # [m], [m], [-]; size = diameter of the area-equivalent circle\n"
       << "  corners: [" << f->corners_min << ", " << f->corners_max << "]  # [-]\n"
-      << "  aspect_max: " << fmt(f->aspect_max) << "  # [-] corners on an ellipse of axis ratio uniform in [1, aspect_max]\n"
+      << "  shape: " << (f->shape == FloeShape::voronoi ? "voronoi" : "ellipse") << "\n"
+      << "  aspect_max: " << fmt(f->aspect_max) << "  # [-] ellipse shapes: axis ratio uniform in [1, aspect_max]\n"
       << "  thickness: " << fmt(f->thickness) << "  # [m]\n"
       << "  velocity: " << fmt(f->velocity) << "  # [m/s]\n"
       << "  seed: " << f->seed << "\n"

@@ -67,6 +67,12 @@ struct BodySpec {
   SourceRef source;               // for error messages
 };
 
+// How a generated floe's outline is made (scene/floe_field.h).
+enum class FloeShape {
+  ellipse,  // corners at random angles on a random ellipse (corner count uniform in the range; aspect_max)
+  voronoi,  // an interior cell of a Poisson-Voronoi tessellation with a corner count in the range
+};
+
 // Random convex floes placed in a rectangle at a target concentration, without initial contact.
 struct FloeFieldSpec {
   Vec2 region_min{0.0, 0.0};   // [m]
@@ -77,7 +83,8 @@ struct FloeFieldSpec {
   double exponent = 2.0;       // power-law exponent alpha of the size pdf f(x) = c x^-alpha (Eq. 15-16) [-]
   int corners_min = 5;         // corners per floe, drawn uniformly in [min, max]
   int corners_max = 10;
-  double aspect_max = 2.5;     // corners lie on an ellipse of semi-axis ratio uniform in [1, aspect_max] [-], [1, 10]
+  FloeShape shape = FloeShape::ellipse;
+  double aspect_max = 2.5;     // ellipse shapes: semi-axis ratio uniform in [1, aspect_max] [-], [1, 10]
   double thickness = 1.0;      // [m]
   Vec2 velocity{0.0, 0.0};     // initial velocity [m/s]
   std::uint64_t seed = 1;

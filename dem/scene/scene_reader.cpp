@@ -215,6 +215,7 @@ FloeFieldSpec read_floe_field(MapReader m) {
       s.corners_min = s.corners_max = static_cast<int>(to_integer(ctx, *f, 3, hi));
     }
   }
+  m.choice("shape", s.shape, {{"ellipse", FloeShape::ellipse}, {"voronoi", FloeShape::voronoi}});
   m.number("aspect_max", s.aspect_max, closed(1.0, 10.0, "-"));
   m.number("thickness", s.thickness, positive("m"));
   m.vec2("velocity", s.velocity, "m/s");

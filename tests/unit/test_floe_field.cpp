@@ -316,6 +316,50 @@ TEST(FloeField, PaperField50And60Percent) {  // (speed: tests/bench/bench_floe_f
   }
 }
 
+TEST(FloeField, VoronoiShapes) {
+  // Outlines cut from Poisson-Voronoi tessellations: a valid field (convex, sizes exact, no overlaps, the
+  // concentration), the corner range honoured, deterministic for a seed; over the full range the mean corner count
+  // is the tessellation's: 6 (Euler's formula for a planar tiling with degree-3 vertices), less the few corners that
+  // merging edges shorter than 1e-3 of the perimeter removes.
+  FloeFieldSpec s = paper_spec(0.6);
+  s.shape = FloeShape::voronoi;
+  s.corners_min = 3;
+  s.corners_max = 64;
+  const FloeField f = generate_floe_field(s, 920.0, 0);
+  expect_valid_field(s, f, true);
+  double corners = 0.0;
+  for (const auto& d : f.floes) corners += static_cast<double>(d.shape->size());
+  corners /= static_cast<double>(f.floes.size());
+  EXPECT_NEAR(corners, 6.0, 0.15) << f.floes.size() << " floes";
+  const FloeField again = generate_floe_field(s, 920.0, 0);
+  ASSERT_EQ(again.floes.size(), f.floes.size());
+  for (std::size_t i = 0; i < f.floes.size(); ++i)
+    ASSERT_EQ(again.floes[i].shape->vertices(), f.floes[i].shape->vertices()) << i;
+  // Only the outlines differ from an ellipse field of the same seed: the sizes are the same draws.
+  FloeFieldSpec e = s;
+  e.shape = FloeShape::ellipse;
+  e.corners_min = 5;
+  e.corners_max = 10;
+  const FloeField ellipse = generate_floe_field(e, 920.0, 0);
+  EXPECT_EQ(ellipse.floes.size(), f.floes.size());
+  EXPECT_NEAR(ellipse.floes.front().shape->area(), f.floes.front().shape->area(), 1e-9 * f.floes.front().shape->area());
+  // A narrower range is honoured.
+  s.corners_min = 7;
+  s.corners_max = 9;
+  expect_valid_field(s, generate_floe_field(s, 920.0, 0), false);
+  // Ranges the tessellation cannot give are refused with the reason.
+  s.corners_min = 15;
+  s.corners_max = 20;
+  try {
+    generate_floe_field(s, 920.0, 0);
+    ADD_FAILURE() << "expected a SceneError";
+  } catch (const SceneError& err) {
+    EXPECT_NE(std::string(err.what()).find("floe_field.corners: only 0 of 65536 Voronoi cells have 15 to 20 corners"),
+              std::string::npos)
+        << err.what();
+  }
+}
+
 TEST(FloeField, GivesUpWithAHelpfulMessage) {
   FloeFieldSpec s = small_spec(0.65);
   s.size_min = s.size_max = 30.0;  // equal discs jam near 55 %
