@@ -2,12 +2,14 @@
 # Regenerates the figures in docs/figures/ from their runs and benchmarks:
 #   channel.png           the README picture, from a run of the default channel scene (~5 min);
 #   drift_quadrature.png  skin-drag torque error vs cost per quadrature rule, from tests/bench/bench_drift (~1 min),
-#                         with its data in docs/data/drift_quadrature.json.
-#   bash postprocess/make_figures.sh [channel|drift]...   (default: all)
+#                         with its data in docs/data/drift_quadrature.json;
+#   channel_geometry.png  the channel scene's walls, ice region and dimensions (seconds).
+#   (The sweep figures come from scripts/sweep.sh and postprocess/plot_sweep.py: docs/validation.md.)
+#   bash postprocess/make_figures.sh [channel|drift|geometry]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 which=("$@")
-[ ${#which[@]} -gt 0 ] || which=(channel drift)
+[ ${#which[@]} -gt 0 ] || which=(channel drift geometry)
 for w in "${which[@]}"; do
   case "$w" in
     channel)
@@ -24,6 +26,12 @@ for w in "${which[@]}"; do
       /usr/bin/python3 postprocess/plot_drift_quadrature.py docs/data/drift_quadrature.json \
         docs/figures/drift_quadrature.png
       ;;
-    *) echo "make_figures.sh: unknown figure '$w' (channel, drift)" >&2; exit 2 ;;
+    geometry)
+      [ -x build/polyfloe ] || bash scripts/build.sh
+      ./build/polyfloe run dem/scenes/channel.yaml -o results/channel_geometry --set run.duration=0.001 \
+        --set output.vtk=false >/dev/null 2>&1
+      /usr/bin/python3 postprocess/plot_channel_geometry.py results/channel_geometry -o docs/figures/channel_geometry.png
+      ;;
+    *) echo "make_figures.sh: unknown figure '$w' (channel, drift, geometry)" >&2; exit 2 ;;
   esac
 done

@@ -236,3 +236,24 @@ TEST(Cli, VelocityGridTooLargeIsRefusedBeforeAnyOutput) {
   EXPECT_TRUE(fs::exists(out / "velocity" / "velocity_000002.vti"));
   fs::remove_all(out);
 }
+
+TEST(Cli, ChannelGeometryFigureFromARun) {
+  const std::string src = POLYFLOE_SOURCE_DIR;
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_geometry";
+  fs::remove_all(out);
+  const Result r = polyfloe("run " + src + "/dem/scenes/channel.yaml -o " + out.string() +
+                            " --set run.duration=0.001 --set output.vtk=false");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string plot = "/usr/bin/python3 " + src + "/postprocess/plot_channel_geometry.py " + out.string() +
+                           " -o " + (out / "geometry.png").string() + " > /dev/null 2>&1";
+  EXPECT_EQ(std::system(plot.c_str()), 0);
+  EXPECT_GT(fs::file_size(out / "geometry.png"), 10000u);
+  // A run without a channel has nothing to draw: a clear refusal.
+  const Result two = polyfloe("run " + kScene + " -o " + (out / "two").string() + " --set run.duration=0.01");
+  ASSERT_EQ(two.code, 0) << two.output;
+  const std::string none = "/usr/bin/python3 " + src + "/postprocess/plot_channel_geometry.py " + (out / "two").string() +
+                           " -o " + (out / "none.png").string() + " > /dev/null 2>&1";
+  EXPECT_NE(std::system(none.c_str()), 0);
+  EXPECT_FALSE(fs::exists(out / "none.png"));
+  fs::remove_all(out);
+}
