@@ -1,5 +1,6 @@
-// Scene -> World: explicit bodies first (their own ids, or the next free ones in order), then the channel walls, then
-// the generated floe field, which keeps clear of both.
+// Scene -> World: explicit bodies first (their own ids, or the next free ones in order), then the channel walls, the
+// ice sheet (cells touching each other, clear of the bodies above), then the generated floe field, which keeps clear
+// of all of them.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -10,6 +11,7 @@
 #include "scene/channel.h"
 #include "scene/field_statistics.h"
 #include "scene/floe_field.h"
+#include "scene/ice_sheet.h"
 #include "scene/scene.h"
 
 namespace polyfloe::scene {
@@ -70,11 +72,12 @@ double reference_speed(const Scene& scene) {
   const forcing::DriftSettings& d = scene.world.drift;
   std::vector<Vec2> where;
   for (const BodySpec& b : scene.bodies) where.push_back(b.position);
-  if (const auto& f = scene.floe_field) {
+  auto sample_region = [&](const Vec2& lo, const Vec2& hi) {
     for (int i = 0; i < 5; ++i)
-      for (int j = 0; j < 5; ++j)
-        where.push_back(f->region_min + (f->region_max - f->region_min).cwiseProduct(Vec2(i / 4.0, j / 4.0)));
-  }
+      for (int j = 0; j < 5; ++j) where.push_back(lo + (hi - lo).cwiseProduct(Vec2(i / 4.0, j / 4.0)));
+  };
+  if (const auto& f = scene.floe_field) sample_region(f->region_min, f->region_max);
+  if (const auto& sh = scene.ice_sheet) sample_region(sh->region_min, sh->region_max);
   if (where.empty()) where.emplace_back(0.0, 0.0);
   double speed = 1.0;  // [m/s]
   for (const Vec2& p : where) {
@@ -161,6 +164,7 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     add(world, desc, source);
   }
   if (scene.floe_field) max_thickness = std::max(max_thickness, scene.floe_field->thickness);
+  if (scene.ice_sheet) max_thickness = std::max(max_thickness, scene.ice_sheet->thickness);
   if (!(max_thickness > 0.0)) max_thickness = 1.0;
 
   // Channel walls: fixed, as thick as the thickest floe (their mass never enters the dynamics).
@@ -185,6 +189,23 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
       desc.motion = Motion::fixed;
       add(world, desc, source);
     }
+  }
+
+  // The ice sheet's cells: touching each other, overlapping nothing placed above.
+  if (scene.ice_sheet) {
+    const std::string where = scene.ice_sheet->source.where.empty() ? "ice_sheet" : scene.ice_sheet->source.where;
+    const std::size_t placed_before = bodies.size();
+    for (const BodyDesc& desc : ice_sheet_bodies(*scene.ice_sheet, scene.ice_density, next)) {
+      PlacedBody p = placed(where + " (ice_sheet cell " + std::to_string(desc.id - next) + ")", *desc.shape,
+                            desc.position, 0.0, true);
+      for (std::size_t k = 0; k < placed_before; ++k) {
+        if (overlapping(p, bodies[k]))
+          throw SceneError(p.source + ": overlaps " + bodies[k].source + " initially; move the body or the sheet");
+      }
+      bodies.push_back(std::move(p));
+      add(world, desc, where);
+    }
+    next += static_cast<BodyId>(bodies.size() - placed_before);
   }
 
   // Generated floes, clear of everything above.

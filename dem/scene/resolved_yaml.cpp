@@ -142,6 +142,16 @@ std::string resolved_yaml(const Scene& s) {
       << "  seed: " << f->seed << "\n"
       << "  max_attempts: " << f->max_attempts << "  # [-] placement tries per floe\n";
   }
+  if (const auto& sh = s.ice_sheet) {
+    o << "ice_sheet:\n"
+      << "  region: [" << fmt(sh->region_min.x()) << ", " << fmt(sh->region_min.y()) << ", "
+      << fmt(sh->region_max.x()) << ", " << fmt(sh->region_max.y()) << "]  # [m] xmin, ymin, xmax, ymax\n"
+      << "  cell_size: " << fmt(sh->cell_size) << "  # [m] diameter of the circle of the mean cell area\n"
+      << "  relaxation: " << sh->relaxation << "  # [-] Lloyd iterations\n"
+      << "  thickness: " << fmt(sh->thickness) << "  # [m]\n"
+      << "  velocity: " << fmt(sh->velocity) << "  # [m/s]\n"
+      << "  seed: " << sh->seed << "\n";
+  }
   if (const auto& ch = s.channel) {
     o << "channel:\n"
       << "  basin_x_min: " << fmt(ch->basin_x_min) << "  # [m]\n"

@@ -107,6 +107,20 @@ struct ChannelSpec {
   SourceRef source;
 };
 
+// Level ice as a sheet of Voronoi cells tiling a rectangle (scene/ice_sheet.h): the cells touch along shared edges,
+// with no gap and no overlap. Unbonded, it is a fully packed field of broken ice; [bonds] freezes it.
+struct IceSheetSpec {
+  Vec2 region_min{0.0, 0.0};       // [m]
+  Vec2 region_max{100.0, 100.0};   // [m]
+  double cell_size = 10.0;         // mean cell size: diameter of the circle of the mean cell area [m], > 0
+  int relaxation = 0;              // Lloyd iterations: 0 = Poisson-Voronoi cells, more = rounder, more even [-]
+  double thickness = 1.0;          // [m]
+  Vec2 velocity{0.0, 0.0};         // initial velocity [m/s]
+  std::uint64_t seed = 1;
+  static constexpr double kMaxCells = 2.0e6;
+  SourceRef source;
+};
+
 struct Scene {
   std::string name = "scene";
   std::string source_path;  // the YAML file
@@ -120,6 +134,7 @@ struct Scene {
   forcing::FieldSpec wind_field;   // what world.drift.wind was built from (default: calm)
   std::vector<BodySpec> bodies;
   std::optional<FloeFieldSpec> floe_field;
+  std::optional<IceSheetSpec> ice_sheet;
   std::optional<ChannelSpec> channel;
 };
 

@@ -247,6 +247,30 @@ ChannelSpec read_channel(MapReader m) {
   return c;
 }
 
+IceSheetSpec read_ice_sheet(MapReader m) {
+  const Context& ctx = m.context();
+  IceSheetSpec s;
+  s.source.where = ctx.where(m.self());
+  if (auto f = m.take("region")) {
+    const std::array<double, 4> r = to_box(ctx, *f);
+    s.region_min = {r[0], r[1]};
+    s.region_max = {r[2], r[3]};
+  }
+  m.number("cell_size", s.cell_size, positive("m"));
+  m.integer("relaxation", s.relaxation, 0, 1000);
+  m.number("thickness", s.thickness, positive("m"));
+  m.vec2("velocity", s.velocity, "m/s");
+  m.unsigned64("seed", s.seed);
+  const double cells = (s.region_max - s.region_min).prod() / (0.25 * std::numbers::pi * s.cell_size * s.cell_size);
+  if (cells > IceSheetSpec::kMaxCells) {
+    const auto f = m.take("cell_size");
+    ctx.fail(f ? *f : m.self(), "the region holds " + fmt(std::round(cells)) + " cells of this size (at most " +
+                                    fmt(IceSheetSpec::kMaxCells) + "): raise ice_sheet.cell_size or shrink its region");
+  }
+  m.finish();
+  return s;
+}
+
 void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   MapReader top(ctx, {root, YAML::Node(), ""});
   top.text("name", s.name);
@@ -257,15 +281,16 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   read_forcing(top.block("forcing"), s);
   if (auto f = top.take("floes")) read_floes(ctx, *f, s.bodies);
   if (auto m = top.optional_block("floe_field")) s.floe_field = read_floe_field(*m);
+  if (auto m = top.optional_block("ice_sheet")) s.ice_sheet = read_ice_sheet(*m);
   if (auto m = top.optional_block("channel")) s.channel = read_channel(*m);
   top.finish();
   check_forcing(ctx, top.self(), s);
 
   const bool dynamic_body = std::any_of(s.bodies.begin(), s.bodies.end(),
                                         [](const BodySpec& b) { return b.motion == dynamics::Motion::dynamic; });
-  if (!dynamic_body && !s.floe_field) {
+  if (!dynamic_body && !s.floe_field && !s.ice_sheet) {
     throw SceneError(ctx.file() + ":1:1: the scene has no dynamic body: list floes under 'floes' (motion: dynamic) "
-                                  "or generate them with 'floe_field'");
+                                  "or generate them with 'floe_field' or 'ice_sheet'");
   }
 }
 

@@ -100,11 +100,23 @@ void expect_same_settings(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.exponent, y.exponent);
     EXPECT_EQ(x.corners_min, y.corners_min);
     EXPECT_EQ(x.corners_max, y.corners_max);
+    EXPECT_EQ(x.shape, y.shape);
     EXPECT_EQ(x.aspect_max, y.aspect_max);
     EXPECT_EQ(x.thickness, y.thickness);
     EXPECT_EQ(x.velocity, y.velocity);
     EXPECT_EQ(x.seed, y.seed);
     EXPECT_EQ(x.max_attempts, y.max_attempts);
+  }
+  ASSERT_EQ(a.ice_sheet.has_value(), b.ice_sheet.has_value());
+  if (a.ice_sheet) {
+    const IceSheetSpec &x = *a.ice_sheet, &y = *b.ice_sheet;
+    EXPECT_EQ(x.region_min, y.region_min);
+    EXPECT_EQ(x.region_max, y.region_max);
+    EXPECT_EQ(x.cell_size, y.cell_size);
+    EXPECT_EQ(x.relaxation, y.relaxation);
+    EXPECT_EQ(x.thickness, y.thickness);
+    EXPECT_EQ(x.velocity, y.velocity);
+    EXPECT_EQ(x.seed, y.seed);
   }
   ASSERT_EQ(a.channel.has_value(), b.channel.has_value());
   if (a.channel) {
@@ -141,6 +153,7 @@ TEST(SceneReader, DefaultsFillEverythingNotGiven) {
   EXPECT_FALSE(s.time.reference_speed.has_value());
   EXPECT_EQ(s.world.broad_phase_cell, 0.0);
   EXPECT_FALSE(s.floe_field.has_value());
+  EXPECT_FALSE(s.ice_sheet.has_value());
   EXPECT_FALSE(s.channel.has_value());
   ASSERT_EQ(s.bodies.size(), 1u);
   const BodySpec& b = s.bodies[0];
@@ -449,6 +462,7 @@ TEST(ResolvedYaml, RoundTripsTheExampleScenes) {
   expect_round_trip(read_scene(kSceneDir + "drift_tidal.yaml", {}));
   expect_round_trip(read_scene(kSceneDir + "drift_vortex.yaml", {}));
   expect_round_trip(read_scene(kSceneDir + "channel_realistic.yaml", {}));
+  expect_round_trip(read_scene(kSceneDir + "pack_ice_sheet.yaml", {}));
 }
 
 TEST(ResolvedYaml, RoundTripsEveryFieldKind) {

@@ -1,0 +1,24 @@
+// Level-ice sheets: a rectangle tiled by the Voronoi cells of uniform random sites (Boost.Polygon through
+// geometry/voronoi.h), optionally made more even by Lloyd's relaxation (each iteration moves every site to its
+// cell's centroid). The cells share their edges exactly (the same Voronoi vertices), so the sheet has no gap and no
+// overlap; they are the elements that [bonds] freezes together.
+//
+//   cell count  n = round(region area / (pi cell_size^2 / 4)), at least 1
+//   sites       uniform in the region (std::mt19937_64 with the portable mapping of scene/floe_field.h)
+#pragma once
+
+#include <vector>
+
+#include "dynamics/body.h"
+#include "scene/scene.h"
+
+namespace polyfloe::scene {
+
+// World-frame counter-clockwise cells tiling the region, in site order. Throws SceneError (prefixed with
+// spec.source) for a bad spec or more than IceSheetSpec::kMaxCells cells.
+std::vector<std::vector<Vec2>> voronoi_sheet(const IceSheetSpec& spec);
+
+// The sheet's cells as dynamic bodies of `density` [kg/m^3], ids first_id, first_id + 1, ...
+std::vector<dynamics::BodyDesc> ice_sheet_bodies(const IceSheetSpec& spec, double density, dynamics::BodyId first_id);
+
+}  // namespace polyfloe::scene
