@@ -10,8 +10,8 @@ writes:
                      the mean over seeds as a line, the range over seeds as a band
   sweep_fields.png   the initial fields: size distribution (area-equivalent diameter, log bins, per member of the
                      exponent family, all seeds pooled) and circularity histograms (corners family)
-  sweep_maps_<family>.png  floes coloured by speed at t = 170 s and 200 s for each member, first seed (paper
-                     Fig. 11 style)
+  sweep_maps_<family>.png  floes coloured by speed at t = 170 s and 200 s for each member, first seed, and the
+                     ice speed on the velocity grid averaged over the output interval (paper Fig. 11 style)
   --summary FILE     per member: seeds, floe count, area passed at the end, mean speeds at 170 s / 200 s / the end,
                      jams (mean and standard deviation over seeds); also printed as a table
 """
@@ -196,32 +196,64 @@ def plot_fields(root, out):
 
 
 def plot_maps(root, fam, out, times=(170.0, 200.0)):
+    """Floes coloured by speed (first seed) and, where the runs wrote it, the gridded ice speed averaged over the
+    output interval ending at that time (/diagnostics/velocity_grid; first seed that has it)."""
     ms = members(root, fam)
     if not ms:
         return
-    fig, axes = plt.subplots(len(ms), len(times), figsize=(5.5 * len(times), 2.8 * len(ms)), squeeze=False)
+    grids = {}
+    for name, paths in ms:
+        for path in paths:
+            with h5py.File(path, "r") as f:
+                if "/diagnostics/velocity_grid" in f:
+                    grids[name] = path
+                    break
+    cols = len(times) * (2 if grids else 1)
+    fig, axes = plt.subplots(len(ms), cols, figsize=(5.0 * cols, 2.6 * len(ms)), squeeze=False)
+    pc = None
     for r, (name, paths) in enumerate(ms):
-        with h5py.File(paths[0], "r") as f:
-            t = f["/time"][:]
-            motion = f["/floes/motion"][:]
-            for c, want in enumerate(times):
+        for c, want in enumerate(times):
+            with h5py.File(paths[0], "r") as f:
+                t = f["/time"][:]
+                motion = f["/floes/motion"][:]
                 k = int(np.argmin(np.abs(t - want)))
                 polys = frame_polygons(f, k)
                 v = np.linalg.norm(f["/state/velocity"][k][:, :2], axis=1)
-                ax = axes[r, c]
-                walls = [p for p, m in zip(polys, motion) if m != 0]
-                floes = [p for p, m in zip(polys, motion) if m == 0]
-                ax.add_collection(PolyCollection(walls, facecolor="0.6", edgecolor="none"))
-                pc = PolyCollection(floes, array=v[motion == 0], cmap="viridis", edgecolor="k", linewidth=0.1)
-                pc.set_clim(0, 5)
-                ax.add_collection(pc)
-                ax.set_xlim(0, 2000)
-                ax.set_ylim(-50, 1050)
-                ax.set_aspect("equal")
-                ax.set_title(f"{name} ({os.path.basename(os.path.dirname(paths[0]))}), t = {t[k]:.0f} s", fontsize=9)
+            walls = [p for p, m in zip(polys, motion) if m != 0]
+            ax = axes[r, c]
+            ax.add_collection(PolyCollection(walls, facecolor="0.6", edgecolor="none"))
+            pc = PolyCollection([p for p, m in zip(polys, motion) if m == 0], array=v[motion == 0], cmap="viridis",
+                                edgecolor="k", linewidth=0.1)
+            pc.set_clim(0, 5)
+            ax.add_collection(pc)
+            ax.set_title(f"{name} ({os.path.basename(os.path.dirname(paths[0]))}): floes, t = {t[k]:.0f} s",
+                         fontsize=8)
+            if name in grids:
+                with h5py.File(grids[name], "r") as f:
+                    tg = f["/time"][:]
+                    kg = int(np.argmin(np.abs(tg - want)))
+                    g = f["/diagnostics/velocity_grid"]
+                    x0, y0, cell = g.attrs["x0"], g.attrs["y0"], g.attrs["cell"]
+                    nx, ny = int(g.attrs["nx"]), int(g.attrs["ny"])
+                    vel = g["velocity"][kg]
+                    polys_g = frame_polygons(f, kg)
+                    motion_g = f["/floes/motion"][:]
+                    interval = tg[kg] - tg[kg - 1] if kg > 0 else 0.0
+                speed = np.hypot(vel[..., 0], vel[..., 1])
+                ax = axes[r, len(times) + c]
+                ax.imshow(np.ma.masked_invalid(speed), origin="lower", cmap="viridis", vmin=0, vmax=5,
+                          extent=(x0, x0 + nx * cell, y0, y0 + ny * cell), interpolation="nearest")
+                ax.add_collection(PolyCollection([p for p, m in zip(polys_g, motion_g) if m != 0], facecolor="0.6",
+                                                 edgecolor="none"))
+                ax.set_title(f"{name} ({os.path.basename(os.path.dirname(grids[name]))}): {cell:.0f} m grid, "
+                             f"mean over {tg[kg] - interval:.0f}–{tg[kg]:.0f} s", fontsize=8)
+        for ax in axes[r]:
+            ax.set_xlim(0, 2000)
+            ax.set_ylim(-50, 1050)
+            ax.set_aspect("equal")
         fig.colorbar(pc, ax=axes[r, :].tolist(), label="speed [m/s]", shrink=0.8)
     path = os.path.join(out, f"sweep_maps_{fam}.png")
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     print(f"wrote {path}")
 
 
