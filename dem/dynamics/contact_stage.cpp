@@ -20,6 +20,7 @@ void World::contact_forces(double dt) {
     // Orient every pair by id so the stored spring has one meaning whatever the index order.
     int a = cp.a, b = cp.b;
     if (id_[a] > id_[b]) std::swap(a, b);
+    if (bonds_ && bonds_->bonded(a, b)) continue;  // frozen together: the bond carries the load
     const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
     contact::PlanarContact g;
     if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g, gradient)) continue;

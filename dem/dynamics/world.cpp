@@ -153,6 +153,7 @@ void World::compute_forces(double dt) {
   auto t1 = clock::now();
   contact_forces(dt);
   profile_.forcing += std::chrono::duration<double>(t1 - t0).count();
+  if (bonds_) bond_forces(time_ + dt);
   // The linear model of the drift load in the body's velocity, F_d(v) = b - D v with b = F_d(v*) + D v*.
   lin_force_.resize(n);
   lin_torque_.resize(n);

@@ -6,10 +6,12 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <unordered_map>
 #include <vector>
 
+#include "bonds/bond_set.h"
 #include "contact/broad_phase.h"
 #include "contact/contact_cache.h"
 #include "contact/contact_law.h"
@@ -39,7 +41,7 @@ struct ContactRecord {
 
 // Wall-clock seconds spent in each stage of step(), summed over steps.
 struct StepProfile {
-  double integrate = 0.0, shapes = 0.0, broad = 0.0, narrow_and_law = 0.0, forcing = 0.0;
+  double integrate = 0.0, shapes = 0.0, broad = 0.0, narrow_and_law = 0.0, forcing = 0.0, bonds = 0.0;
   std::uint64_t steps = 0;
 };
 
@@ -82,6 +84,14 @@ class World {
   std::span<const Vec2> world_vertices(int i) const {
     return {world_xy_.data() + vert_off_[i], static_cast<std::size_t>(vert_off_[i + 1] - vert_off_[i])};
   }
+
+  // --- bonds between elements (frozen ice): none until set ---
+  // Replaces the bond set (its element indices are this World's body indices). Pairs joined by an intact face skip
+  // the contact law; bond forces are added in every force evaluation.
+  void set_bonds(bonds::BondSet bonds);
+  const bonds::BondSet* bonds() const { return bonds_ ? &*bonds_ : nullptr; }
+  // Faces that failed in the last force evaluation.
+  int bonds_failed_last() const { return bonds_failed_last_; }
 
   // --- contacts of the last force evaluation ---
   const std::vector<ContactRecord>& contacts() const { return contacts_; }
@@ -134,11 +144,15 @@ class World {
   void update_shape(int i);
   void contact_forces(double dt);
   void drift_forces(double t);
+  void bond_forces(double t);
 
   WorldSettings settings_;
   contact::ContactLaw law_;
   contact::GridBroadPhase broad_;
   contact::ContactCache cache_;
+  std::optional<bonds::BondSet> bonds_;
+  std::vector<double> bond_mass_;  // mass of each body for the bonds, +inf unless dynamic [kg]
+  int bonds_failed_last_ = 0;
   double time_ = 0.0;
   std::uint64_t steps_ = 0;
   bool forces_ready_ = false;
