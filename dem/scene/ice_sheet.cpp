@@ -1,6 +1,8 @@
 #include "scene/ice_sheet.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <sstream>
@@ -14,6 +16,84 @@ namespace {
 
 std::string prefix(const IceSheetSpec& spec) {
   return (spec.source.where.empty() ? std::string() : spec.source.where + ": ") + "ice_sheet: ";
+}
+
+// Collapses the edges of a tiling shorter than `shortest` (shortest first), keeping it a tiling: an edge's two
+// vertices become one, at the edge's midpoint, in every cell that has either (a vertex on the region's boundary
+// stays where it is; an edge along the boundary is kept), and only when every cell touched stays strictly convex.
+// Poisson-Voronoi cells have edges down to a millionth of their size; elements that small would need time steps as
+// small (their mass falls with their size, their bond stiffness does not).
+void collapse_short_edges(std::vector<std::vector<Vec2>>& cells, const geometry::Aabb& box, double shortest) {
+  // Shared vertices: the cells of a Voronoi tiling carry bit-identical copies of each vertex.
+  std::map<std::pair<double, double>, int> ids;
+  std::vector<Vec2> pos;
+  std::vector<std::vector<int>> cell_ids(cells.size());
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    for (const Vec2& v : cells[k]) {
+      const auto [it, fresh] = ids.emplace(std::make_pair(v.x(), v.y()), static_cast<int>(pos.size()));
+      if (fresh) pos.push_back(v);
+      cell_ids[k].push_back(it->second);
+    }
+  }
+  std::vector<std::vector<int>> vertex_cells(pos.size());
+  for (std::size_t k = 0; k < cell_ids.size(); ++k)
+    for (int v : cell_ids[k]) vertex_cells[static_cast<std::size_t>(v)].push_back(static_cast<int>(k));
+  const double tol = 1e-9 * (box.hi - box.lo).maxCoeff();
+  auto on_boundary = [&](int v) {
+    const Vec2& p = pos[static_cast<std::size_t>(v)];
+    return p.x() <= box.lo.x() + tol || p.x() >= box.hi.x() - tol || p.y() <= box.lo.y() + tol ||
+           p.y() >= box.hi.y() - tol;
+  };
+  std::vector<std::pair<double, std::pair<int, int>>> edges;
+  for (const auto& c : cell_ids) {
+    for (std::size_t j = 0; j < c.size(); ++j) {
+      const int a = c[j], b = c[(j + 1) % c.size()];
+      if (a < b) edges.push_back({(pos[static_cast<std::size_t>(a)] - pos[static_cast<std::size_t>(b)]).norm(), {a, b}});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::uint8_t> alive(pos.size(), 1);
+  for (const auto& [length0, ab] : edges) {
+    if (length0 >= shortest) break;
+    const auto [a, b] = ab;
+    if (!alive[static_cast<std::size_t>(a)] || !alive[static_cast<std::size_t>(b)]) continue;
+    const bool ba = on_boundary(a), bb = on_boundary(b);
+    if (ba && bb) continue;
+    const Vec2 target = ba ? pos[static_cast<std::size_t>(a)]
+                           : bb ? pos[static_cast<std::size_t>(b)]
+                                : 0.5 * (pos[static_cast<std::size_t>(a)] + pos[static_cast<std::size_t>(b)]);
+    if ((pos[static_cast<std::size_t>(a)] - pos[static_cast<std::size_t>(b)]).norm() >= shortest) continue;
+    // Every cell with a or b, rebuilt with b merged into a at the target: all must stay strictly convex.
+    std::vector<int> touched = vertex_cells[static_cast<std::size_t>(a)];
+    for (int k : vertex_cells[static_cast<std::size_t>(b)])
+      if (std::find(touched.begin(), touched.end(), k) == touched.end()) touched.push_back(k);
+    std::vector<std::vector<int>> rebuilt;
+    bool ok = true;
+    for (int k : touched) {
+      std::vector<int> c;
+      for (int v : cell_ids[static_cast<std::size_t>(k)]) {
+        const int w = v == b ? a : v;
+        if (c.empty() || c.back() != w) c.push_back(w);
+      }
+      while (c.size() > 1 && c.front() == c.back()) c.pop_back();
+      std::vector<Vec2> xy;
+      for (int v : c) xy.push_back(v == a ? target : pos[static_cast<std::size_t>(v)]);
+      if (c.size() < 3 || !geometry::convexity_error(xy).empty()) {
+        ok = false;
+        break;
+      }
+      rebuilt.push_back(std::move(c));
+    }
+    if (!ok) continue;
+    pos[static_cast<std::size_t>(a)] = target;
+    alive[static_cast<std::size_t>(b)] = 0;
+    for (std::size_t t = 0; t < touched.size(); ++t) cell_ids[static_cast<std::size_t>(touched[t])] = rebuilt[t];
+    vertex_cells[static_cast<std::size_t>(a)] = touched;
+  }
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    cells[k].clear();
+    for (int v : cell_ids[k]) cells[k].push_back(pos[static_cast<std::size_t>(v)]);
+  }
 }
 
 }  // namespace
@@ -47,6 +127,7 @@ std::vector<std::vector<Vec2>> voronoi_sheet(const IceSheetSpec& spec) {
   } catch (const geometry::VoronoiError& e) {  // coinciding sites: 2^-28 of the region apart
     throw SceneError(prefix(spec) + e.what() + "; try another ice_sheet.seed");
   }
+  collapse_short_edges(out, box, IceSheetSpec::kMinEdgeFraction * spec.cell_size);
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (const std::string why = geometry::convexity_error(out[i]); !why.empty())
       throw SceneError(prefix(spec) + "cell " + std::to_string(i) + " is degenerate (" + why +

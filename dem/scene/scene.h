@@ -118,6 +118,7 @@ struct IceSheetSpec {
   Vec2 velocity{0.0, 0.0};         // initial velocity [m/s]
   std::uint64_t seed = 1;
   static constexpr double kMaxCells = 2.0e6;
+  static constexpr double kMinEdgeFraction = 0.1;  // shorter cell edges are collapsed (x cell_size)
   SourceRef source;
 };
 

@@ -77,6 +77,32 @@ TEST(IceSheet, CellsTileTheRegionExactly) {
   }
 }
 
+TEST(IceSheet, ShortEdgesAreCollapsed) {
+  // Poisson-Voronoi cells have edges down to a millionth of their size; the sheet collapses edges shorter than
+  // kMinEdgeFraction x cell_size where every cell touched stays convex (not along the region's boundary).
+  IceSheetSpec s;
+  s.region_max = {400.0, 400.0};
+  s.cell_size = 10.0;
+  const auto cells = voronoi_sheet(s);
+  const double shortest = 1.0;  // kMinEdgeFraction (0.1) x cell_size
+  std::size_t edges = 0, short_inside = 0;
+  double least = 1e300;
+  for (const auto& c : cells) {
+    for (std::size_t j = 0; j < c.size(); ++j) {
+      const Vec2 a = c[j], b = c[(j + 1) % c.size()];
+      ++edges;
+      const bool along_side = (a.x() == b.x() && (a.x() == 0.0 || a.x() == 400.0)) ||
+                              (a.y() == b.y() && (a.y() == 0.0 || a.y() == 400.0));
+      if (along_side) continue;
+      least = std::min(least, (a - b).norm());
+      if ((a - b).norm() < shortest) ++short_inside;
+    }
+  }
+  std::printf("%zu cells, %zu edge sides: %zu inner ones shorter than %.1f m left, the shortest %.3g m\n", cells.size(),
+              edges, short_inside, shortest, least);
+  EXPECT_LT(static_cast<double>(short_inside), 0.01 * static_cast<double>(edges));
+}
+
 TEST(IceSheet, DeterministicForASeed) {
   IceSheetSpec s;
   s.relaxation = 1;
