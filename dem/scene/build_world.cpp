@@ -3,6 +3,7 @@
 // of all of them.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -93,13 +94,25 @@ double reference_speed(const Scene& scene) {
   return speed;
 }
 
+double bond_time_step(const dynamics::World& world) {
+  const bonds::BondSet* b = world.bonds();
+  if (!b) return std::numeric_limits<double>::infinity();
+  std::vector<double> mass(world.size()), inertia(world.size());
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    const int k = static_cast<int>(i);
+    mass[i] = world.motion(k) == Motion::dynamic ? world.mass(k) : std::numeric_limits<double>::infinity();
+    inertia[i] = world.inertia(k);
+  }
+  return kBondStepFraction * b->critical_time_step(mass, inertia);
+}
+
 double time_step(const Scene& scene, const dynamics::World& world) {
   if (scene.time.dt) return *scene.time.dt;
   const double duration = world.shortest_contact_duration(reference_speed(scene));  // [s]
   if (!(duration > 0.0) || !std::isfinite(duration))
     throw SceneError(scene.source_path + ": cannot choose an automatic time step (shortest contact duration " +
                      std::to_string(duration) + " s); set run.dt");
-  return duration / scene.time.steps_per_contact;
+  return std::min(duration / scene.time.steps_per_contact, bond_time_step(world));
 }
 
 dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
@@ -192,20 +205,47 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
   }
 
   // The ice sheet's cells: touching each other, overlapping nothing placed above.
-  if (scene.ice_sheet) {
-    const std::string where = scene.ice_sheet->source.where.empty() ? "ice_sheet" : scene.ice_sheet->source.where;
+  if (const auto& sheet = scene.ice_sheet) {
+    const std::string where = sheet->source.where.empty() ? "ice_sheet" : sheet->source.where;
     const std::size_t placed_before = bodies.size();
-    for (const BodyDesc& desc : ice_sheet_bodies(*scene.ice_sheet, scene.ice_density, next)) {
-      PlacedBody p = placed(where + " (ice_sheet cell " + std::to_string(desc.id - next) + ")", *desc.shape,
-                            desc.position, 0.0, true);
+    const SheetElementsOut elements = ice_sheet_elements(*sheet);
+    const std::vector<BodyDesc> descs = ice_sheet_bodies(*sheet, scene.ice_density, next);
+    std::vector<int> index(descs.size());
+    for (std::size_t e = 0; e < descs.size(); ++e) {
+      const BodyDesc& desc = descs[e];
+      PlacedBody p = placed(where + " (ice_sheet element " + std::to_string(e) + ")", *desc.shape, desc.position,
+                            0.0, true);
       for (std::size_t k = 0; k < placed_before; ++k) {
         if (overlapping(p, bodies[k]))
           throw SceneError(p.source + ": overlaps " + bodies[k].source + " initially; move the body or the sheet");
       }
       bodies.push_back(std::move(p));
       add(world, desc, where);
+      index[e] = world.index_of(desc.id);
     }
-    next += static_cast<BodyId>(bodies.size() - placed_before);
+    next += static_cast<BodyId>(descs.size());
+    if (const auto& b = sheet->bonds) {
+      bonds::BondMaterial m;
+      m.youngs_modulus = scene.world.contact.youngs_modulus;
+      m.poisson_ratio = scene.world.contact.poisson_ratio;
+      m.tensile_strength = b->tensile_strength;
+      m.shear_strength = b->shear_strength;
+      m.friction_angle = b->friction_angle;
+      m.points_per_face = b->points_per_face;
+      m.damping_ratio = b->damping_ratio;
+      try {
+        bonds::BondSet set(m);
+        for (const SheetFace& f : elements.faces) {
+          const BodyDesc &da = descs[static_cast<std::size_t>(f.a)], &db = descs[static_cast<std::size_t>(f.b)];
+          set.add_face({.a = index[static_cast<std::size_t>(f.a)], .b = index[static_cast<std::size_t>(f.b)],
+                        .id_a = da.id, .id_b = db.id, .p0 = f.p0, .p1 = f.p1, .thickness = sheet->thickness,
+                        .centre_a = da.position, .centre_b = db.position, .yaw_a = 0.0, .yaw_b = 0.0});
+        }
+        world.set_bonds(std::move(set));
+      } catch (const std::invalid_argument& e) {
+        throw SceneError(where + ": ice_sheet.bonds: " + e.what());
+      }
+    }
   }
 
   // Generated floes, clear of everything above.

@@ -136,8 +136,39 @@ std::vector<std::vector<Vec2>> voronoi_sheet(const IceSheetSpec& spec) {
   return out;
 }
 
+SheetElementsOut ice_sheet_elements(const IceSheetSpec& spec) {
+  SheetElementsOut out;
+  std::vector<std::vector<Vec2>> cells = voronoi_sheet(spec);
+  if (spec.elements == SheetElements::triangles) {
+    for (const std::vector<Vec2>& c : cells) {
+      const Vec2 centre = geometry::polygon_properties(c).centroid;
+      for (std::size_t j = 0; j < c.size(); ++j) out.polygons.push_back({centre, c[j], c[(j + 1) % c.size()]});
+    }
+  } else {
+    out.polygons = std::move(cells);
+  }
+  // Shared edges: each appears once in each of its two elements, in opposite directions.
+  using Key = std::pair<std::pair<double, double>, std::pair<double, double>>;
+  std::map<Key, std::pair<int, int>> first;  // edge (start, end) -> (element, -)
+  for (std::size_t e = 0; e < out.polygons.size(); ++e) {
+    const auto& p = out.polygons[e];
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      const Vec2 u = p[j], v = p[(j + 1) % p.size()];
+      const auto it = first.find({{v.x(), v.y()}, {u.x(), u.y()}});  // the neighbour walks it the other way
+      if (it != first.end()) {
+        const int other = it->second.first;
+        out.faces.push_back({std::min(other, static_cast<int>(e)), std::max(other, static_cast<int>(e)), u, v});
+        first.erase(it);
+      } else {
+        first.emplace(Key{{u.x(), u.y()}, {v.x(), v.y()}}, std::make_pair(static_cast<int>(e), 0));
+      }
+    }
+  }
+  return out;
+}
+
 std::vector<dynamics::BodyDesc> ice_sheet_bodies(const IceSheetSpec& spec, double density, dynamics::BodyId first_id) {
-  const std::vector<std::vector<Vec2>> cells = voronoi_sheet(spec);
+  const std::vector<std::vector<Vec2>> cells = ice_sheet_elements(spec).polygons;
   std::vector<dynamics::BodyDesc> bodies;
   bodies.reserve(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) {

@@ -18,7 +18,21 @@ namespace polyfloe::scene {
 // spec.source) for a bad spec or more than IceSheetSpec::kMaxCells cells.
 std::vector<std::vector<Vec2>> voronoi_sheet(const IceSheetSpec& spec);
 
-// The sheet's cells as dynamic bodies of `density` [kg/m^3], ids first_id, first_id + 1, ...
+// The sheet's elements: its cells, or with elements = triangles each cell fanned from its centroid into triangles
+// (triangle j of a cell: centroid, corner j, corner j + 1), and every edge two elements share (matched by its
+// bit-identical end points), with the elements on either side.
+struct SheetFace {
+  int a = 0, b = 0;  // element indices, a < b
+  Vec2 p0, p1;       // ends of the shared edge [m]
+};
+struct SheetElementsOut {
+  std::vector<std::vector<Vec2>> polygons;  // world frame, counter-clockwise [m]
+  std::vector<SheetFace> faces;
+};
+SheetElementsOut ice_sheet_elements(const IceSheetSpec& spec);
+
+// The sheet's elements as dynamic bodies of `density` [kg/m^3], ids first_id, first_id + 1, ... (in the order of
+// ice_sheet_elements().polygons).
 std::vector<dynamics::BodyDesc> ice_sheet_bodies(const IceSheetSpec& spec, double density, dynamics::BodyId first_id);
 
 }  // namespace polyfloe::scene

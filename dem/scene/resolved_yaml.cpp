@@ -150,7 +150,16 @@ std::string resolved_yaml(const Scene& s) {
       << "  relaxation: " << sh->relaxation << "  # [-] Lloyd iterations\n"
       << "  thickness: " << fmt(sh->thickness) << "  # [m]\n"
       << "  velocity: " << fmt(sh->velocity) << "  # [m/s]\n"
-      << "  seed: " << sh->seed << "\n";
+      << "  seed: " << sh->seed << "\n"
+      << "  elements: " << (sh->elements == SheetElements::triangles ? "triangles" : "cells") << "\n";
+    if (const auto& b = sh->bonds) {
+      o << "  bonds:\n"
+        << "    tensile_strength: " << fmt(b->tensile_strength) << "  # [Pa]\n"
+        << "    shear_strength: " << fmt(b->shear_strength) << "  # [Pa] Mohr-Coulomb cohesion\n"
+        << "    friction_angle: " << fmt(b->friction_angle) << "  # [rad]\n"
+        << "    points_per_face: " << b->points_per_face << "\n"
+        << "    damping_ratio: " << fmt(b->damping_ratio) << "  # [-]\n";
+    }
   }
   if (const auto& ch = s.channel) {
     o << "channel:\n"

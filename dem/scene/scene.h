@@ -109,6 +109,20 @@ struct ChannelSpec {
 
 // Level ice as a sheet of Voronoi cells tiling a rectangle (scene/ice_sheet.h): the cells touch along shared edges,
 // with no gap and no overlap. Unbonded, it is a fully packed field of broken ice; [bonds] freezes it.
+// Bonds that freeze an ice sheet's elements together (bonds/bond_set.h; E and nu come from the ice block).
+struct SheetBondSpec {
+  double tensile_strength = 1.5e6;  // normal (tensile) bond strength [Pa], > 0
+  double shear_strength = 1.5e6;    // Mohr-Coulomb cohesion [Pa], > 0
+  double friction_angle = 0.0;      // Mohr-Coulomb friction angle [rad], [0, pi/2)
+  int points_per_face = 4;          // bond points along each shared edge [-], 2..64
+  double damping_ratio = 0.1;       // of each face's springs [-], [0, 10]
+};
+
+enum class SheetElements {
+  cells,      // each Voronoi cell is one element
+  triangles,  // each cell is split into triangles fanned from its centroid (the paper's triangular prisms)
+};
+
 struct IceSheetSpec {
   Vec2 region_min{0.0, 0.0};       // [m]
   Vec2 region_max{100.0, 100.0};   // [m]
@@ -117,6 +131,8 @@ struct IceSheetSpec {
   double thickness = 1.0;          // [m]
   Vec2 velocity{0.0, 0.0};         // initial velocity [m/s]
   std::uint64_t seed = 1;
+  SheetElements elements = SheetElements::cells;
+  std::optional<SheetBondSpec> bonds;  // empty: unbonded (broken ice)
   static constexpr double kMaxCells = 2.0e6;
   static constexpr double kMinEdgeFraction = 0.1;  // shorter cell edges are collapsed (x cell_size)
   SourceRef source;
@@ -138,6 +154,12 @@ struct Scene {
   std::optional<IceSheetSpec> ice_sheet;
   std::optional<ChannelSpec> channel;
 };
+
+// The automatic time step with bonds: this fraction of the bonds' critical step (bonds/bond_set.h), itself a lower
+// bound of the stable step.
+inline constexpr double kBondStepFraction = 0.9;
+// kBondStepFraction x the critical step of the world's intact bonds [s]; +inf without bonds.
+double bond_time_step(const dynamics::World& world);
 
 // Builds the World (explicit bodies, generated walls and floe field). Throws SceneError naming the source of a
 // body that is invalid (non-convex polygon, overlaps, ...).

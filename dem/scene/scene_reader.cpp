@@ -261,6 +261,17 @@ IceSheetSpec read_ice_sheet(MapReader m) {
   m.number("thickness", s.thickness, positive("m"));
   m.vec2("velocity", s.velocity, "m/s");
   m.unsigned64("seed", s.seed);
+  m.choice("elements", s.elements, {{"cells", SheetElements::cells}, {"triangles", SheetElements::triangles}});
+  if (auto b = m.optional_block("bonds")) {
+    SheetBondSpec bond;
+    b->number("tensile_strength", bond.tensile_strength, positive("Pa"));
+    b->number("shear_strength", bond.shear_strength, positive("Pa"));
+    b->number("friction_angle", bond.friction_angle, Range{0.0, 0.5 * std::numbers::pi, true, false, "rad"});
+    b->integer("points_per_face", bond.points_per_face, 2, 64);
+    b->number("damping_ratio", bond.damping_ratio, closed(0.0, 10.0, "-"));
+    b->finish();
+    s.bonds = bond;
+  }
   const double cells = (s.region_max - s.region_min).prod() / (0.25 * std::numbers::pi * s.cell_size * s.cell_size);
   if (cells > IceSheetSpec::kMaxCells) {
     const auto f = m.take("cell_size");

@@ -174,14 +174,41 @@ TEST(IceSheetScene, BlockKeysRoundTripAndErrors) {
   EXPECT_TRUE(contains(m, "key 'ice_sheet.relaxation'")) << m;
   m = parse_error("ice_sheet: {cells: 10}\n");
   EXPECT_TRUE(contains(m, "unknown key 'ice_sheet.cells'; allowed in 'ice_sheet': region, cell_size, relaxation, "
-                          "thickness, velocity, seed"))
+                          "thickness, velocity, seed, elements, bonds"))
       << m;
+  // Elements and bonds.
+  const Scene frozen = parse_scene(
+      "ice_sheet: {elements: triangles, bonds: {tensile_strength: 0.5e6, shear_strength: 0.7e6, "
+      "friction_angle: 0.5, points_per_face: 3, damping_ratio: 0.2}}\n",
+      "f.yaml", {});
+  EXPECT_EQ(frozen.ice_sheet->elements, SheetElements::triangles);
+  ASSERT_TRUE(frozen.ice_sheet->bonds.has_value());
+  const Scene back = parse_scene(resolved_yaml(frozen), "r.yaml", {});
+  ASSERT_TRUE(back.ice_sheet->bonds.has_value());
+  EXPECT_EQ(back.ice_sheet->elements, SheetElements::triangles);
+  EXPECT_EQ(back.ice_sheet->bonds->tensile_strength, 0.5e6);
+  EXPECT_EQ(back.ice_sheet->bonds->shear_strength, 0.7e6);
+  EXPECT_EQ(back.ice_sheet->bonds->friction_angle, 0.5);
+  EXPECT_EQ(back.ice_sheet->bonds->points_per_face, 3);
+  EXPECT_EQ(back.ice_sheet->bonds->damping_ratio, 0.2);
+  EXPECT_FALSE(parse_scene(resolved_yaml(s), "r.yaml", {}).ice_sheet->bonds.has_value());
+  m = parse_error("ice_sheet: {bonds: {tensile_strength: 0}}\n");
+  EXPECT_TRUE(contains(m, "key 'ice_sheet.bonds.tensile_strength': 0 is outside the allowed range (0, inf) [Pa]")) << m;
+  m = parse_error("ice_sheet: {bonds: {points_per_face: 1}}\n");
+  EXPECT_TRUE(contains(m, "key 'ice_sheet.bonds.points_per_face'")) << m;
+  m = parse_error("ice_sheet: {bonds: {friction_angle: 1.6}}\n");
+  EXPECT_TRUE(contains(m, "key 'ice_sheet.bonds.friction_angle'") && contains(m, "[rad]")) << m;
+  m = parse_error("ice_sheet: {elements: quads}\n");
+  EXPECT_TRUE(contains(m, "expected one of cells, triangles, got 'quads'")) << m;
+  m = parse_error("ice_sheet: {bonds: {strength: 1}}\n");
+  EXPECT_TRUE(contains(m, "unknown key 'ice_sheet.bonds.strength'")) << m;
+
   // A body inside the sheet is refused, naming both.
   const Scene clash = parse_scene(sheet + "floes:\n  - {regular: {sides: 4, radius: 3}, position: [50, 30], "
                                           "motion: fixed}\n",
                                   "c.yaml", {});
   m = error_of([&] { build_world(clash); });
-  EXPECT_TRUE(contains(m, "(ice_sheet cell") && contains(m, "overlaps c.yaml:3:5 (floes.0) initially")) << m;
+  EXPECT_TRUE(contains(m, "(ice_sheet element") && contains(m, "overlaps c.yaml:3:5 (floes.0) initially")) << m;
 }
 
 }  // namespace

@@ -255,3 +255,70 @@ TEST(Bonds, BadInputIsRefused) {
 }
 
 }  // namespace
+
+// --- frozen ice sheets (scene/ice_sheet.h with bonds) ---
+
+#include "scene/ice_sheet.h"
+#include "scene/scene_reader.h"
+
+namespace {
+
+TEST(FrozenSheet, EverySharedEdgeIsBondedAndTheSheetAtRestKeepsEveryBond) {
+  // A 60 m x 60 m sheet of triangles (cells fanned from their centroids) in still water, all drag terms on: nothing
+  // moves, no bond fails, and the contact law never acts between bonded elements.
+  const std::string text =
+      "run: {duration: 2}\n"
+      "ice_sheet: {region: [0, 0, 60, 60], cell_size: 11.28, relaxation: 2, elements: triangles, "
+      "bonds: {tensile_strength: 0.1e6, shear_strength: 0.1e6}}\n";
+  const scene::Scene sc = scene::parse_scene(text, "frozen.yaml", {});
+  dynamics::World w = scene::build_world(sc);
+  const scene::SheetElementsOut el = scene::ice_sheet_elements(*sc.ice_sheet);
+  ASSERT_NE(w.bonds(), nullptr);
+  EXPECT_EQ(w.bonds()->faces(), el.faces.size());
+  // Every edge is either on the region's boundary or bonded: sum of edge lengths = 2 x bonded + boundary (240 m).
+  double all = 0.0, bonded = 0.0;
+  for (const auto& p : el.polygons)
+    for (std::size_t j = 0; j < p.size(); ++j) all += (p[(j + 1) % p.size()] - p[j]).norm();
+  for (std::size_t f = 0; f < w.bonds()->faces(); ++f) bonded += w.bonds()->face_length(f);
+  EXPECT_NEAR(all - 2.0 * bonded, 240.0, 1e-6);
+  const double dt = scene::time_step(sc, w);
+  EXPECT_NEAR(dt, scene::bond_time_step(w), 1e-15) << "the bonds set the step";
+  // Elements that only share a corner (the triangles of a cell meet at its centroid) may register a contact of
+  // rounding-level depth; bonded pairs never do.
+  double deepest = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    w.step(dt);
+    for (const dynamics::ContactRecord& c : w.contacts()) {
+      ASSERT_FALSE(w.bonds()->bonded(c.a, c.b)) << "step " << k;
+      deepest = std::max(deepest, c.geometry.depth);
+    }
+  }
+  EXPECT_LT(deepest, 1e-9);
+  EXPECT_EQ(w.bonds()->intact_faces(), w.bonds()->faces());
+  EXPECT_EQ(w.bonds()->intact_points(), w.bonds()->points());
+  EXPECT_LT(w.max_speed(), 1e-9);
+}
+
+TEST(FrozenSheet, PulledApartItBreaksInTheMiddle) {
+  // A bonded sheet of cells whose two halves are set moving apart: the bonds across the middle fail in tension,
+  // while those far from it hold.
+  const std::string text =
+      "run: {duration: 2}\n"
+      "ice_sheet: {region: [0, 0, 60, 30], cell_size: 10, relaxation: 3, "
+      "bonds: {tensile_strength: 0.05e6, shear_strength: 0.05e6}}\n";
+  const scene::Scene sc = scene::parse_scene(text, "pull.yaml", {});
+  dynamics::World w = scene::build_world(sc);
+  const std::size_t faces = w.bonds()->faces();
+  for (int i = 0; i < static_cast<int>(w.size()); ++i)
+    w.set_velocity(i, {w.positions()[static_cast<std::size_t>(i)].x() < 30.0 ? -0.5 : 0.5, 0.0}, 0.0);
+  const double dt = scene::time_step(sc, w);
+  for (int k = 0; k < 4000; ++k) w.step(dt);
+  EXPECT_LT(w.bonds()->intact_faces(), faces);
+  EXPECT_GT(w.bonds()->intact_faces(), faces / 2) << "only the faces near the middle should go";
+  std::size_t broken_far = 0;
+  for (std::size_t f = 0; f < faces; ++f)
+    if (!w.bonds()->face_intact(f) && std::abs(w.bonds()->face_midpoint0(f).x() - 30.0) > 15.0) ++broken_far;
+  EXPECT_EQ(broken_far, 0u);
+}
+
+}  // namespace
