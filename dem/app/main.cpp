@@ -188,6 +188,7 @@ int main(int argc, char** argv) {
     if (sc.output.vtk) {
       std::string series = "floes.pvd";
       if (sc.output.contacts) series += ", contacts.pvd";
+      if (sc.ice_sheet && sc.ice_sheet->bonds) series += ", bonds.pvd";
       if (sc.output.velocity_grid.enabled) series += ", velocity.pvd";
       std::cout << "  " << series << std::string(series.size() < 24 ? 24 - series.size() : 1, ' ')
                 << " (open in ParaView)\n";

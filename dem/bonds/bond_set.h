@@ -104,6 +104,7 @@ class BondSet {
   Vec2 face_midpoint0(std::size_t f) const { return face_mid_[f]; }    // [m] when frozen
   std::size_t face_first_point(std::size_t f) const { return face_first_[f]; }
   bool point_intact(std::size_t p) const { return point_intact_[p] != 0; }
+  Vec2 point_anchor_a(std::size_t p) const { return anchor_a_[p]; }  // lever in element a's body frame [m]
   double point_sigma(std::size_t p) const { return point_sigma_[p]; }  // last normal stress [Pa], > 0 tension
   double point_tau(std::size_t p) const { return point_tau_[p]; }      // last shear stress [Pa]
   // Of the last apply(): the largest tensile stress and the largest |shear| stress over intact points [Pa].

@@ -18,6 +18,10 @@ namespace {
 
 constexpr std::uint64_t kSeriesChunk = 256;  // rows per chunk of the 1-D and small series
 
+void units(Dataset&& d, const char* u, const char* description = nullptr) {
+  d.set_attribute("units", u);
+  if (description) d.set_attribute("description", description);
+}
 void units(Dataset& d, const char* u, const char* description = nullptr) {
   d.set_attribute("units", u);
   if (description) d.set_attribute("description", description);
@@ -45,6 +49,12 @@ struct Hdf5Writer::Impl {
   Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum,
       angular_momentum;
   std::vector<Dataset> extra;
+  // loads on walls and plates
+  std::vector<int> boundary;  // indices of the fixed and kinematic bodies
+  Dataset boundary_force;
+  // bonds (a World with a BondSet)
+  Dataset intact_faces, intact_points, face_intact, point_intact, max_tension, max_shear;
+  std::vector<std::uint8_t> flags;
   // scratch rows
   std::vector<double> row3, row4;
 
@@ -130,6 +140,56 @@ struct Hdf5Writer::Impl {
                                   "dynamic bodies");
     angular_momentum = root_series(diag, "angular_momentum", DType::f64, {}, kSeriesChunk, "kg m^2/s",
                                    "dynamic bodies, about the origin");
+    for (int i = 0; i < n; ++i)
+      if (world.motion(i) != dynamics::Motion::dynamic) boundary.push_back(i);
+    if (!boundary.empty()) {
+      std::vector<std::uint64_t> bids;
+      for (int i : boundary) bids.push_back(world.id(i));
+      units(diag.write_dataset<std::uint64_t>("boundary_ids", bids), "1",
+            "ids of the fixed and kinematic bodies (walls, plates), in the order of boundary_force");
+      boundary_force = root_series(diag, "boundary_force", DType::f64, {boundary.size(), 2}, kSeriesChunk, "N",
+                                   "force of the ice (contacts, bonds) on each fixed or kinematic body");
+    }
+    if (const bonds::BondSet* b = world.bonds()) {
+      auto g = root.create_group("bonds");
+      const bonds::BondMaterial& m = b->material();
+      g.set_attribute("points_per_face", static_cast<std::int64_t>(m.points_per_face));
+      g.set_attribute("tensile_strength", m.tensile_strength);
+      g.set_attribute("shear_strength", m.shear_strength);
+      g.set_attribute("friction_angle", m.friction_angle);
+      g.set_attribute("damping_ratio", m.damping_ratio);
+      g.set_attribute("youngs_modulus", m.youngs_modulus);
+      g.set_attribute("poisson_ratio", m.poisson_ratio);
+      const std::size_t nf = b->faces();
+      std::vector<std::uint64_t> ia(nf), ib(nf);
+      std::vector<double> len(nf), normal(2 * nf), mid(2 * nf);
+      for (std::size_t f = 0; f < nf; ++f) {
+        ia[f] = b->face_id_a(f);
+        ib[f] = b->face_id_b(f);
+        len[f] = b->face_length(f);
+        normal[2 * f] = b->face_normal0(f).x();
+        normal[2 * f + 1] = b->face_normal0(f).y();
+        mid[2 * f] = b->face_midpoint0(f).x();
+        mid[2 * f + 1] = b->face_midpoint0(f).y();
+      }
+      units(g.write_dataset<std::uint64_t>("face_id_a", ia), "1", "body id of each face's first element");
+      units(g.write_dataset<std::uint64_t>("face_id_b", ib), "1", "body id of each face's second element");
+      units(g.write_dataset<double>("face_length", len), "m");
+      units(g.write_dataset<double>("face_normal", normal, Dims{nf, 2}), "1",
+            "unit normal from element a to b when frozen");
+      units(g.write_dataset<double>("face_midpoint", mid, Dims{nf, 2}), "m", "midpoint of the face when frozen");
+      intact_faces = root_series(g, "intact_faces", DType::i64, {}, kSeriesChunk, "1");
+      intact_points = root_series(g, "intact_points", DType::i64, {}, kSeriesChunk, "1");
+      max_tension = root_series(g, "max_tensile_stress", DType::f64, {}, kSeriesChunk, "Pa",
+                                "largest normal (tensile) stress over intact bond points");
+      max_shear = root_series(g, "max_shear_stress", DType::f64, {}, kSeriesChunk, "Pa",
+                              "largest |shear stress| over intact bond points");
+      face_intact = g.create_series("face_intact", DType::u8, {nf}, 1, 1);
+      units(face_intact, "1", "[frame, face] 1 while the face holds");
+      point_intact = g.create_series("point_intact", DType::u8, {b->points()}, 1, 1);
+      units(point_intact, "1", "[frame, point] 1 while the bond point holds; face f has points_per_face points from "
+                               "f x points_per_face");
+    }
     std::vector<std::pair<std::string, hdf5::Group>> groups;
     for (const ExtraSeries& e : extra_series) {
       auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == e.group; });
@@ -219,6 +279,29 @@ struct Hdf5Writer::Impl {
     linear_momentum.append_rows<double>(p2, 1);
     angular_momentum.append_rows<double>({&l, 1}, 1);
     for (std::size_t k = 0; k < extra.size(); ++k) extra[k].append_rows<double>({&extra_values[k], 1}, 1);
+    if (!boundary.empty()) {
+      row3.clear();
+      for (int i : boundary) {
+        row3.push_back(world.forces()[static_cast<std::size_t>(i)].x());
+        row3.push_back(world.forces()[static_cast<std::size_t>(i)].y());
+      }
+      boundary_force.append_rows<double>(row3, 1);
+    }
+    if (const bonds::BondSet* b = world.bonds()) {
+      const auto nfaces = static_cast<std::int64_t>(b->intact_faces());
+      const auto npoints = static_cast<std::int64_t>(b->intact_points());
+      intact_faces.append_rows<std::int64_t>({&nfaces, 1}, 1);
+      intact_points.append_rows<std::int64_t>({&npoints, 1}, 1);
+      const double st = b->max_sigma(), ss = b->max_tau();
+      max_tension.append_rows<double>({&st, 1}, 1);
+      max_shear.append_rows<double>({&ss, 1}, 1);
+      flags.resize(b->faces());
+      for (std::size_t f = 0; f < b->faces(); ++f) flags[f] = b->face_intact(f) ? 1 : 0;
+      face_intact.append_rows<std::uint8_t>(flags, 1);
+      flags.resize(b->points());
+      for (std::size_t q = 0; q < b->points(); ++q) flags[q] = b->point_intact(q) ? 1 : 0;
+      point_intact.append_rows<std::uint8_t>(flags, 1);
+    }
     ++frames;
     file.flush();
   }

@@ -9,7 +9,11 @@
 //          velocity [T,N,3] [m/s], angular_velocity [T,N,3] [rad/s] (0, 0, omega)
 //   /diagnostics/kinetic_energy [T] [J], contact_count [T], max_speed [T] [m/s], mean_speed [T] [m/s]
 //          (both over dynamic bodies), max_overlap_depth [T] [m], linear_momentum [T,2] [kg m/s],
-//          angular_momentum [T] [kg m^2/s]
+//          angular_momentum [T] [kg m^2/s]; with walls or plates: boundary_ids [K], boundary_force [T,K,2] [N]
+//          (the force of the ice on each fixed or kinematic body)
+//   /bonds (a World with bonds): attributes of the bond material; face_id_a, face_id_b [F], face_length [F] [m],
+//          face_normal [F,2], face_midpoint [F,2] [m] (when frozen); series intact_faces [T], intact_points [T],
+//          max_tensile_stress [T], max_shear_stress [T] [Pa], face_intact [T,F] uint8, point_intact [T,P] uint8
 //
 // Every dataset carries a "units" attribute; the root carries scene_path, scene_text, code_version, overrides,
 // dt, water_density and created_by = "PolyFloe". The file is flushed after each frame, so a run killed between

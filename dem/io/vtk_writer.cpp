@@ -2,6 +2,7 @@
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
+#include <vtkLine.h>
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
@@ -29,6 +30,7 @@
 
 namespace polyfloe::io {
 namespace fs = std::filesystem;
+using geometry::Vec2;
 namespace {
 
 // Shortest text that reads back to the same double.
@@ -222,7 +224,93 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
                           static_cast<vtkDataArray*>(thickness), static_cast<vtkDataArray*>(motion)}) {
     data->GetCellData()->AddArray(a);
   }
+  if (const bonds::BondSet* b = world.bonds()) {
+    // Mean normal and |shear| stress over each element's intact bond points, on all its cells.
+    std::vector<double> sigma(static_cast<std::size_t>(bodies), 0.0), tau(sigma.size(), 0.0), count(sigma.size(), 0.0);
+    const auto per = static_cast<std::size_t>(b->material().points_per_face);
+    for (std::size_t f = 0; f < b->faces(); ++f) {
+      for (std::size_t p = b->face_first_point(f); p < b->face_first_point(f) + per; ++p) {
+        if (!b->point_intact(p)) continue;
+        for (int e : {b->face_a(f), b->face_b(f)}) {
+          sigma[static_cast<std::size_t>(e)] += b->point_sigma(p);
+          tau[static_cast<std::size_t>(e)] += std::abs(b->point_tau(p));
+          count[static_cast<std::size_t>(e)] += 1.0;
+        }
+      }
+    }
+    auto normal = make_array<vtkDoubleArray>("bond_normal_stress", 1, n_cells);
+    auto shear = make_array<vtkDoubleArray>("bond_shear_stress", 1, n_cells);
+    vtkIdType c = 0;
+    for (int i = 0; i < bodies; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double sn = count[k] > 0 ? sigma[k] / count[k] : 0.0, st = count[k] > 0 ? tau[k] / count[k] : 0.0;
+      for (std::size_t j = 0; j < world.world_vertices(i).size() + 2; ++j, ++c) {
+        normal->SetValue(c, sn);
+        shear->SetValue(c, st);
+      }
+    }
+    data->GetCellData()->AddArray(normal);
+    data->GetCellData()->AddArray(shear);
+  }
   data->GetCellData()->SetActiveScalars("speed");
+  add_time(data, world);
+  return data;
+}
+
+// One line per bond face, where the face is now (along element a's side of it), with its state as cell data.
+vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world) {
+  const bonds::BondSet& b = *world.bonds();
+  const auto n = static_cast<vtkIdType>(b.faces());
+  const std::size_t per = static_cast<std::size_t>(b.material().points_per_face);
+  auto coords = make_array<vtkDoubleArray>("Points", 3, 2 * n);
+  auto intact = make_array<vtkTypeInt32Array>("intact", 1, n);
+  auto normal = make_array<vtkDoubleArray>("normal_stress", 1, n);
+  auto shear = make_array<vtkDoubleArray>("shear_stress", 1, n);
+  auto points = make_array<vtkTypeInt32Array>("intact_points", 1, n);
+  auto broken = make_array<vtkDoubleArray>("broken_time", 1, n);
+  const auto pos = world.positions();
+  const auto yaw = world.yaws();
+  for (vtkIdType f = 0; f < n; ++f) {
+    const auto fu = static_cast<std::size_t>(f);
+    const auto a = static_cast<std::size_t>(b.face_a(fu));
+    const double c = std::cos(yaw[a]), s = std::sin(yaw[a]);
+    const std::size_t p0 = b.face_first_point(fu), p1 = p0 + per - 1;
+    // The points sit at the middles of equal segments: extend by half a segment to the face's ends.
+    const Vec2 first = geometry::rotate(b.point_anchor_a(p0), c, s), last = geometry::rotate(b.point_anchor_a(p1), c, s);
+    const Vec2 half = (last - first) / (2.0 * static_cast<double>(per - 1));
+    const Vec2 e0 = pos[a] + first - half, e1 = pos[a] + last + half;
+    const double x0[3] = {e0.x(), e0.y(), 0.0}, x1[3] = {e1.x(), e1.y(), 0.0};
+    coords->SetTypedTuple(2 * f, x0);
+    coords->SetTypedTuple(2 * f + 1, x1);
+    double sn = 0.0, st = 0.0;
+    int k = 0;
+    for (std::size_t p = p0; p <= p1; ++p) {
+      if (!b.point_intact(p)) continue;
+      sn += b.point_sigma(p);
+      st += std::abs(b.point_tau(p));
+      ++k;
+    }
+    intact->SetValue(f, b.face_intact(fu) ? 1 : 0);
+    points->SetValue(f, k);
+    normal->SetValue(f, k ? sn / k : 0.0);
+    shear->SetValue(f, k ? st / k : 0.0);
+    broken->SetValue(f, b.face_broken_time(fu));
+  }
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  pts->SetData(coords);
+  data->SetPoints(pts);
+  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
+  offsets->SetNumberOfValues(n + 1);
+  for (vtkIdType f = 0; f <= n; ++f) offsets->SetValue(f, 2 * f);
+  vtkNew<vtkCellArray> lines;
+  lines->SetData(offsets, iota(2 * n));
+  data->SetLines(lines);
+  for (vtkDataArray* a : {static_cast<vtkDataArray*>(intact), static_cast<vtkDataArray*>(points),
+                          static_cast<vtkDataArray*>(normal), static_cast<vtkDataArray*>(shear),
+                          static_cast<vtkDataArray*>(broken)})
+    data->GetCellData()->AddArray(a);
+  data->GetCellData()->SetActiveScalars("intact");
   add_time(data, world);
   return data;
 }
@@ -303,7 +391,8 @@ VtkSeriesWriter::VtkSeriesWriter(const fs::path& dir, bool write_contacts, doubl
       write_contacts_(write_contacts),
       water_density_(water_density),
       floes_pvd_(dir / "floes.pvd"),
-      contacts_pvd_(dir / "contacts.pvd") {
+      contacts_pvd_(dir / "contacts.pvd"),
+      bonds_pvd_(dir / "bonds.pvd") {
   if (!(water_density > 0.0) || !std::isfinite(water_density)) {
     throw IoError("VTK output " + dir.string() + ": water density must be positive, got " + exact(water_density));
   }
@@ -321,9 +410,18 @@ void VtkSeriesWriter::write_frame(const dynamics::World& world) {
     contacts_file = "contacts/" + frame_name("contacts", frames_);
     write_polydata(contacts_polydata(world), dir_ / contacts_file);
   }
+  std::string bonds_file;
+  if (world.bonds()) {
+    std::error_code ec;
+    fs::create_directories(dir_ / "bonds", ec);
+    if (ec) throw IoError("cannot create VTK output folder " + (dir_ / "bonds").string() + ": " + ec.message());
+    bonds_file = "bonds/" + frame_name("bonds", frames_);
+    write_polydata(bonds_polydata(world), dir_ / bonds_file);
+  }
   // Collections last: they only ever list frames that are complete on disk.
   floes_pvd_.add(world.time(), floes_file);
   if (write_contacts_) contacts_pvd_.add(world.time(), contacts_file);
+  if (world.bonds()) bonds_pvd_.add(world.time(), bonds_file);
   ++frames_;
 }
 

@@ -2,6 +2,7 @@
 //
 //   DIR/floes.pvd, DIR/floes/floes_NNNNNN.vtp          every body (walls too) as a prism
 //   DIR/contacts.pvd, DIR/contacts/contacts_NNNNNN.vtp  one vertex per active contact (optional)
+//   DIR/bonds.pvd, DIR/bonds/bonds_NNNNNN.vtp          one line per bond face where it is now (worlds with bonds)
 //
 // Each .vtp is written under a temporary name and renamed into place, and each .pvd is rewritten atomically
 // after the frame it lists, so a run killed at any moment leaves a collection that parses and lists only
@@ -56,6 +57,7 @@ class VtkSeriesWriter {
   int frames_ = 0;
   PvdCollection floes_pvd_;
   PvdCollection contacts_pvd_;
+  PvdCollection bonds_pvd_;
 };
 
 // A regular grid of cells in the plane z = 0: cell (j, i) spans x0 + [i, i+1] cell, y0 + [j, j+1] cell.

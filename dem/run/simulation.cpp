@@ -29,13 +29,14 @@ std::string join(const std::vector<std::string>& v, const char* sep) {
 }
 
 // Removes the outputs of an earlier run in the same folder, and nothing else: frame files named as this program
-// names them (floes/floes_NNNNNN.vtp, contacts/contacts_NNNNNN.vtp, velocity/velocity_NNNNNN.vti, and hidden
+// names them (floes/floes_NNNNNN.vtp, contacts/contacts_NNNNNN.vtp, bonds/bonds_NNNNNN.vtp,
+// velocity/velocity_NNNNNN.vti, and hidden
 // temporaries), the series and the HDF5 file. A frame folder is removed only if that leaves it empty.
 void clear_previous_outputs(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
   for (const auto& [name, extension] : {std::pair<std::string, std::string>{"floes", ".vtp"},
-                                        {"contacts", ".vtp"}, {"velocity", ".vti"}}) {
+                                        {"contacts", ".vtp"}, {"bonds", ".vtp"}, {"velocity", ".vti"}}) {
     const fs::path sub = dir / name;
     if (!fs::is_directory(sub, ec)) continue;
     for (const auto& entry : fs::directory_iterator(sub, ec)) {
@@ -46,7 +47,8 @@ void clear_previous_outputs(const std::filesystem::path& dir) {
     }
     fs::remove(sub, ec);  // only succeeds when empty
   }
-  for (const char* name : {"floes.pvd", "contacts.pvd", "velocity.pvd", "results.h5", "scene.resolved.yaml"})
+  for (const char* name : {"floes.pvd", "contacts.pvd", "bonds.pvd", "velocity.pvd", "results.h5",
+                           "scene.resolved.yaml"})
     fs::remove(dir / name, ec);
 }
 

@@ -555,3 +555,65 @@ TEST(Progress, InteractiveEndsWithNewline) {
   EXPECT_EQ(text.rfind("\rdone: t = 1.00 s, 10 steps in ", 0), 0u) << text;
   EXPECT_EQ(text.back(), '\n');
 }
+
+namespace {
+
+TEST(IoWriters, BondsAndBoundaryForcesReadBack) {
+  // Two squares bonded across x = 5, the left one fixed, the right one pulled: the bond stress, the intact flags,
+  // the face as a VTK line where it is, the elements' mean bond stress, and the force on the fixed body.
+  TempDir dir;
+  dynamics::WorldSettings ws;
+  ws.drift = forcing::DriftSettings::none();
+  dynamics::World w(ws);
+  const std::vector<geometry::Vec2> corners{{-5, -5}, {5, -5}, {5, 5}, {-5, 5}};
+  auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(corners));
+  w.add_body({.id = 10, .shape = sq, .position = {0, 0}, .motion = dynamics::Motion::fixed});
+  w.add_body({.id = 11, .shape = sq, .position = {10, 0}});
+  bonds::BondSet b(bonds::BondMaterial{.points_per_face = 3});
+  b.add_face({.a = 0, .b = 1, .id_a = 10, .id_b = 11, .p0 = {5, -5}, .p1 = {5, 5}, .thickness = 1.0,
+              .centre_a = {0, 0}, .centre_b = {10, 0}});
+  w.set_bonds(std::move(b));
+  const double F = 1.0e5;  // [N]: sigma = F / (10 m x 1 m) = 10 kPa once settled
+  w.set_external_load(1, {F, 0.0}, 0.0);
+  io::VtkSeriesWriter vtk(dir.path(), false, kWater);
+  {
+    io::Hdf5Writer h5(dir.path() / "run.h5", w, io::RunInfo{}, kWater);
+    vtk.write_frame(w);
+    h5.write_frame(w);
+    for (int k = 0; k < 3000; ++k) w.step(2e-4);
+    vtk.write_frame(w);
+    h5.write_frame(w);
+  }
+  io::hdf5::File f(dir.path() / "run.h5", io::hdf5::File::Mode::read_only);
+  const auto bonds = f.root().open_group("bonds");
+  EXPECT_EQ(bonds.int_attribute("points_per_face"), 3);
+  EXPECT_EQ(bonds.open_dataset("face_id_a").read<std::uint64_t>(), std::vector<std::uint64_t>{10});
+  EXPECT_EQ(bonds.open_dataset("face_length").read<double>(), std::vector<double>{10.0});
+  EXPECT_EQ(bonds.open_dataset("intact_faces").read<std::int64_t>(), (std::vector<std::int64_t>{1, 1}));
+  EXPECT_EQ(bonds.open_dataset("point_intact").dims(), (io::hdf5::Dims{2, 3}));
+  const auto tension = bonds.open_dataset("max_tensile_stress").read<double>();
+  EXPECT_NEAR(tension[1], F / 10.0, 0.02 * F / 10.0);
+  const auto diag = f.root().open_group("diagnostics");
+  EXPECT_EQ(diag.open_dataset("boundary_ids").read<std::uint64_t>(), std::vector<std::uint64_t>{10});
+  const auto load = diag.open_dataset("boundary_force").read<double>();  // [T, 1, 2]
+  ASSERT_EQ(load.size(), 4u);
+  EXPECT_NEAR(load[2], F, 0.02 * F) << "the bond pulls the fixed square towards +x";
+
+  auto lines = read_vtp(dir.path() / "bonds" / "bonds_000001.vtp");
+  ASSERT_EQ(lines->GetNumberOfCells(), 1);
+  double p0[3], p1[3];
+  lines->GetPoint(0, p0);
+  lines->GetPoint(1, p1);
+  EXPECT_NEAR(p0[0], 5.0, 1e-3);
+  EXPECT_NEAR(std::abs(p1[1] - p0[1]), 10.0, 1e-6) << "the whole face";
+  EXPECT_EQ(lines->GetCellData()->GetArray("intact")->GetTuple1(0), 1.0);
+  EXPECT_NEAR(lines->GetCellData()->GetArray("normal_stress")->GetTuple1(0), F / 10.0, 0.02 * F / 10.0);
+  auto floes = read_vtp(dir.path() / "floes" / "floes_000001.vtp");
+  auto* shear = floes->GetCellData()->GetArray("bond_shear_stress");
+  auto* normal = floes->GetCellData()->GetArray("bond_normal_stress");
+  ASSERT_TRUE(shear && normal);
+  EXPECT_NEAR(normal->GetTuple1(0), F / 10.0, 0.02 * F / 10.0);
+  EXPECT_TRUE(fs::exists(dir.path() / "bonds.pvd"));
+}
+
+}  // namespace
