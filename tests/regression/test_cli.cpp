@@ -257,3 +257,25 @@ TEST(Cli, ChannelGeometryFigureFromARun) {
   EXPECT_FALSE(fs::exists(out / "none.png"));
   fs::remove_all(out);
 }
+
+TEST(Uniaxial, StudyScriptRunsAndThePlotsFollow) {
+  // The compression study on a short run (0.05 s: the plates have barely started): every strength runs, the
+  // outputs have the bonds and the plate forces, and the figures are drawn.
+  const std::string src = POLYFLOE_SOURCE_DIR;
+  const fs::path out = fs::temp_directory_path() / "polyfloe_uniaxial";
+  fs::remove_all(out);
+  const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src +
+                          "/scripts/uniaxial_study.sh -j 2 -o " + out.string() + " -f " + (out / "fig").string() +
+                          " -- --set run.duration=0.05 --set output.interval=0.025 --set output.vtk=false"
+                          " --set ice_sheet.region=[0,0,60,60] --set floes.0.rectangle.height=90 --set floes.0.position=[-10,30]"
+                          " --set floes.1.rectangle.height=90 --set floes.1.position=[70,30]"
+                          " > /dev/null 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  for (const char* s : {"0.1", "0.5", "1.0", "1.5"})
+    EXPECT_TRUE(fs::exists(out / ("sigma_" + std::string(s)) / "results.h5")) << s;
+  for (const char* png : {"uniaxial_stress_strain.png", "uniaxial_fracture_angles.png", "uniaxial_cracks.png"})
+    EXPECT_TRUE(fs::exists(out / "fig" / png)) << png;
+  EXPECT_TRUE(fs::exists(out / "uniaxial.json"));
+  EXPECT_NE(std::system(("bash " + src + "/scripts/uniaxial_study.sh -j 0 > /dev/null 2>&1").c_str()), 0);
+  fs::remove_all(out);
+}

@@ -117,6 +117,15 @@ void expect_same_settings(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.thickness, y.thickness);
     EXPECT_EQ(x.velocity, y.velocity);
     EXPECT_EQ(x.seed, y.seed);
+    EXPECT_EQ(x.elements, y.elements);
+    ASSERT_EQ(x.bonds.has_value(), y.bonds.has_value());
+    if (x.bonds) {
+      EXPECT_EQ(x.bonds->tensile_strength, y.bonds->tensile_strength);
+      EXPECT_EQ(x.bonds->shear_strength, y.bonds->shear_strength);
+      EXPECT_EQ(x.bonds->friction_angle, y.bonds->friction_angle);
+      EXPECT_EQ(x.bonds->points_per_face, y.bonds->points_per_face);
+      EXPECT_EQ(x.bonds->damping_ratio, y.bonds->damping_ratio);
+    }
   }
   ASSERT_EQ(a.channel.has_value(), b.channel.has_value());
   if (a.channel) {
@@ -463,6 +472,7 @@ TEST(ResolvedYaml, RoundTripsTheExampleScenes) {
   expect_round_trip(read_scene(kSceneDir + "drift_vortex.yaml", {}));
   expect_round_trip(read_scene(kSceneDir + "channel_realistic.yaml", {}));
   expect_round_trip(read_scene(kSceneDir + "pack_ice_sheet.yaml", {}));
+  expect_round_trip(read_scene(kSceneDir + "uniaxial_compression.yaml", {}));
 }
 
 TEST(ResolvedYaml, RoundTripsEveryFieldKind) {
