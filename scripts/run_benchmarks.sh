@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the benchmarks (Release) and runs them: the planar narrow phase (tests/bench/bench_narrow_phase.cpp), the
 # whole World::step (tests/bench/bench_step.cpp) and the drift forcing (tests/bench/bench_drift.cpp: quadrature
-# accuracy vs cost, the drift stage per floe) and floe-field generation (tests/bench/bench_floe_field.cpp). Console output on the terminal, JSON in the results folder.
+# accuracy vs cost, the drift stage per floe), floe-field generation (tests/bench/bench_floe_field.cpp) and frozen
+# sheets under compression (tests/bench/bench_bonds.cpp). Console output on the terminal, JSON in the results folder.
 #
 #   bash scripts/run_benchmarks.sh [-b BUILD_DIR] [-o RESULTS_DIR] [-r REPETITIONS] [-- EXTRA_BENCHMARK_ARGS...]
 #
@@ -45,7 +46,7 @@ run() {
 generator=()
 if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
 run cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
-if ! run cmake --build "$BUILD_DIR" --target bench_narrow_phase bench_step bench_drift bench_floe_field -j "$(nproc)"; then
+if ! run cmake --build "$BUILD_DIR" --target bench_narrow_phase bench_step bench_drift bench_floe_field bench_bonds -j "$(nproc)"; then
   echo "run_benchmarks.sh: build failed (the benchmark targets need Google Benchmark: apt-get install libbenchmark-dev)" >&2
   exit 1
 fi
@@ -64,7 +65,7 @@ if [[ "$REPS" -gt 1 ]]; then
   extra=(--benchmark_repetitions="$REPS" --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true)
 fi
 
-for b in bench_narrow_phase bench_step bench_drift bench_floe_field; do
+for b in bench_narrow_phase bench_step bench_drift bench_floe_field bench_bonds; do
   run "$BUILD_DIR/tests/$b" --benchmark_format=console --benchmark_counters_tabular=false \
     --benchmark_out="$OUT_DIR/$b.json" --benchmark_out_format=json "${extra[@]}" "$@"
 done
