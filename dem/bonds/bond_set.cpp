@@ -85,10 +85,31 @@ void BondSet::add_face(const FaceDesc& f) {
   intact_points_ += static_cast<std::size_t>(k);
 }
 
+void BondSet::add_corner_pair(int a, int b, std::span<const int> faces) {
+  if (a == b || a < 0 || b < 0) throw std::invalid_argument("corner pair: needs two distinct elements");
+  for (int f : faces)
+    if (f < 0 || static_cast<std::size_t>(f) >= face_a_.size())
+      throw std::invalid_argument("corner pair: face " + std::to_string(f) + " does not exist");
+  const int k = static_cast<int>(corner_faces_.size());
+  corner_faces_.emplace_back(faces.begin(), faces.end());
+  const std::size_t need = static_cast<std::size_t>(std::max(a, b)) + 1;
+  if (adjacency_.size() < need) adjacency_.resize(need);
+  adjacency_[static_cast<std::size_t>(a)].emplace_back(b, -1 - k);
+  adjacency_[static_cast<std::size_t>(b)].emplace_back(a, -1 - k);
+}
+
 bool BondSet::bonded(int a, int b) const {
   if (a < 0 || static_cast<std::size_t>(a) >= adjacency_.size()) return false;
-  for (const auto& [other, face] : adjacency_[static_cast<std::size_t>(a)])
-    if (other == b && face_intact_[static_cast<std::size_t>(face)]) return true;
+  for (const auto& [other, face] : adjacency_[static_cast<std::size_t>(a)]) {
+    if (other != b) continue;
+    if (face >= 0) {
+      if (face_intact_[static_cast<std::size_t>(face)]) return true;
+    } else {
+      const std::vector<int>& ring = corner_faces_[static_cast<std::size_t>(-1 - face)];
+      if (std::all_of(ring.begin(), ring.end(), [&](int f) { return face_intact_[static_cast<std::size_t>(f)] != 0; }))
+        return true;
+    }
+  }
   return false;
 }
 

@@ -79,7 +79,13 @@ class BondSet {
   // fewer than 2 intact points (at `time` [s]). Returns the number of faces that failed in this call.
   int apply(const ElementState& s, std::span<Vec2> force, std::span<double> torque, double time);
 
-  // True while an intact face joins elements a and b (indices).
+  // Two elements that share only a corner (the triangles of a cell around its centroid, the cells around a vertex
+  // where four meet): while every face at that corner (`faces`: indices as returned in order by add_face) holds,
+  // the ice around the corner is whole and the pair cannot really press into each other, so it is treated as
+  // bonded (no contact law): a contact there would only see a rounding-level overlap at a degenerate corner.
+  void add_corner_pair(int a, int b, std::span<const int> faces);
+
+  // True while an intact face joins elements a and b (indices), or they are a corner pair whose corner is whole.
   bool bonded(int a, int b) const;
 
   // A lower bound of the largest stable time step of the bonded elements: 2 / omega_max, with omega_max^2 bounded
@@ -128,8 +134,9 @@ class BondSet {
   std::vector<double> point_area_;         // [m^2]
   std::vector<std::uint8_t> point_intact_;
   std::vector<double> point_sigma_, point_tau_;
-  // per element: (neighbour, face) of every face it has, for bonded()
+  // per element: (neighbour, face) of every face it has, for bonded(); a corner pair k is stored as face -1 - k
   std::vector<std::vector<std::pair<int, int>>> adjacency_;
+  std::vector<std::vector<int>> corner_faces_;
   std::size_t intact_faces_ = 0, intact_points_ = 0;
   double max_sigma_ = 0.0, max_tau_ = 0.0;
 };

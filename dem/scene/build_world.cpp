@@ -241,6 +241,10 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
                         .id_a = da.id, .id_b = db.id, .p0 = f.p0, .p1 = f.p1, .thickness = sheet->thickness,
                         .centre_a = da.position, .centre_b = db.position, .yaw_a = 0.0, .yaw_b = 0.0});
         }
+        for (const SheetCorner& c : elements.corners) {
+          if (c.faces.empty()) continue;  // a corner on the region's boundary with no face at it
+          set.add_corner_pair(index[static_cast<std::size_t>(c.a)], index[static_cast<std::size_t>(c.b)], c.faces);
+        }
         world.set_bonds(std::move(set));
       } catch (const std::invalid_argument& e) {
         throw SceneError(where + ": ice_sheet.bonds: " + e.what());

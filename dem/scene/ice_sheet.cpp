@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <memory>
 #include <numbers>
 #include <sstream>
@@ -161,6 +162,29 @@ SheetElementsOut ice_sheet_elements(const IceSheetSpec& spec) {
         first.erase(it);
       } else {
         first.emplace(Key{{u.x(), u.y()}, {v.x(), v.y()}}, std::make_pair(static_cast<int>(e), 0));
+      }
+    }
+  }
+  // Corner pairs: elements around a vertex that share no face, with the faces at that vertex.
+  using Point = std::pair<double, double>;
+  std::map<Point, std::vector<int>> at_vertex, faces_at;
+  for (std::size_t e = 0; e < out.polygons.size(); ++e)
+    for (const Vec2& v : out.polygons[e]) at_vertex[{v.x(), v.y()}].push_back(static_cast<int>(e));
+  std::set<std::pair<int, int>> sharing_face;
+  for (std::size_t f = 0; f < out.faces.size(); ++f) {
+    const SheetFace& sf = out.faces[f];
+    faces_at[{sf.p0.x(), sf.p0.y()}].push_back(static_cast<int>(f));
+    faces_at[{sf.p1.x(), sf.p1.y()}].push_back(static_cast<int>(f));
+    sharing_face.insert({sf.a, sf.b});
+  }
+  std::set<std::pair<int, int>> seen;
+  for (const auto& [point, elements] : at_vertex) {
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+      for (std::size_t j = i + 1; j < elements.size(); ++j) {
+        const std::pair<int, int> key{std::min(elements[i], elements[j]), std::max(elements[i], elements[j])};
+        if (sharing_face.count(key) || !seen.insert(key).second) continue;
+        const auto it = faces_at.find(point);
+        out.corners.push_back({key.first, key.second, it == faces_at.end() ? std::vector<int>{} : it->second});
       }
     }
   }

@@ -25,9 +25,15 @@ struct SheetFace {
   int a = 0, b = 0;  // element indices, a < b
   Vec2 p0, p1;       // ends of the shared edge [m]
 };
+// Two elements that share only a corner, with the faces that meet at that corner (indices into faces).
+struct SheetCorner {
+  int a = 0, b = 0;
+  std::vector<int> faces;
+};
 struct SheetElementsOut {
   std::vector<std::vector<Vec2>> polygons;  // world frame, counter-clockwise [m]
   std::vector<SheetFace> faces;
+  std::vector<SheetCorner> corners;
 };
 SheetElementsOut ice_sheet_elements(const IceSheetSpec& spec);
 
