@@ -125,6 +125,7 @@ int BondSet::apply(const ElementState& s, std::span<Vec2> force, std::span<doubl
     const Vec2 t = perp_left(n);
     const double kn = face_kn_[f], ks = face_ks_[f];
     const double ma = s.mass[a], mb = s.mass[b];
+    if (std::isinf(ma) && std::isinf(mb)) continue;  // two fixed or kinematic elements: nothing can move the bond
     // Reduced mass of the pair (one side fixed: the other's mass).
     const double m_red = std::isinf(ma) ? mb : std::isinf(mb) ? ma : ma * mb / (ma + mb);
     const std::size_t p0 = face_first_[f], p1 = p0 + static_cast<std::size_t>(material_.points_per_face);
