@@ -1,5 +1,5 @@
 // polyfloe: the command line.
-//   polyfloe run SCENE [-o DIR] [--set key.path=value]... [--threads N] [--profile]
+//   polyfloe run SCENE [-o DIR] [--set key.path=value]... [--threads N] [--profile] [--restart CHECKPOINT|DIR]
 //   polyfloe check SCENE [--set key.path=value]...
 //   polyfloe --help | --version
 // Exit codes: 0 done, 2 bad input, 3 the run became unstable, 1 anything else.
@@ -10,6 +10,8 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,9 @@ Options:
                           --set forcing.ocean.current=[0.5,0] --set floes.0.position=[10,0]
   --threads N             worker threads (>= 1; the step is serial in this version)
   --profile               print where the step time went
+  --restart CKPT|DIR      continue an interrupted run from a checkpoint file, or from the newest checkpoint of
+                          a run's output folder; the result is bitwise that of an uninterrupted run (same scene
+                          and --set options). Output goes on in the run's folder (default: the checkpoint's)
 
 Exit codes: 0 done, 2 bad input (scene or arguments), 3 the run became unstable, 1 other failure.
 Scene keys are described in docs/scene-reference.md.
@@ -52,6 +57,7 @@ struct Args {
   std::vector<std::string> overrides;
   int threads = 1;
   bool profile = false;
+  std::filesystem::path restart;
 };
 
 class UsageError : public std::runtime_error {
@@ -90,6 +96,10 @@ Args parse_args(int argc, char** argv) {
       a.threads = static_cast<int>(t);
     } else if (s == "--profile") {
       a.profile = true;
+    } else if (s == "--restart") {
+      if (a.command != "run") throw UsageError("option " + s + " applies to 'run' only");
+      a.restart = value(i, s);
+      if (a.restart.empty()) throw UsageError("--restart expects a checkpoint file or a run's output folder");
     } else if (!s.empty() && s[0] == '-') {
       throw UsageError("unknown option '" + s + "'");
     } else if (a.scene.empty()) {
@@ -171,12 +181,51 @@ int main(int argc, char** argv) {
   opt.interactive = isatty(fileno(stderr)) != 0;
   opt.profile = args.profile;
   opt.version = POLYFLOE_VERSION;
+  // The simulation checks a restart's checkpoint against the world and the interrupted run's outputs before it
+  // touches any file: a bad checkpoint is bad input.
+  std::optional<run::Simulation> sim;
   try {
-    std::cerr << "polyfloe: " << sc.name << ": " << world->size() << " bodies, " << sc.time.duration
-              << " s simulated, dt = " << scene::time_step(sc, *world) << " s -> " << opt.output_dir.string() << "\n";
-    if (sc.floe_field) std::cerr << "polyfloe: floe field: " << scene::to_string(field) << "\n";
-    run::Simulation sim(sc, std::move(*world), opt);
-    const run::RunSummary s = sim.run();
+    std::optional<run::Checkpoint> restart;
+    std::filesystem::path restart_file;
+    if (!args.restart.empty()) {
+      restart_file = run::find_checkpoint(args.restart);
+      restart = run::read_checkpoint(restart_file);
+      const std::filesystem::path folder = restart_file.parent_path();
+      if (args.output.empty() && folder.filename() == "checkpoints") opt.output_dir = folder.parent_path();
+      const std::string now = scene::resolved_yaml(sc);
+      if (restart->scene_resolved != now) {
+        std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "
+                     "an uninterrupted run of either. Changed lines:\n";
+        std::istringstream was(restart->scene_resolved), is(now);
+        std::vector<std::string> a, b;
+        for (std::string l; std::getline(was, l);) a.push_back(l);
+        for (std::string l; std::getline(is, l);) b.push_back(l);
+        for (std::size_t k = 0; k < std::max(a.size(), b.size()); ++k) {
+          const std::string x = k < a.size() ? a[k] : "", y = k < b.size() ? b[k] : "";
+          if (x != y) std::cerr << "  - " << x << "\n  + " << y << "\n";
+        }
+      }
+    }
+    sim.emplace(sc, std::move(*world), opt, std::move(restart), restart_file);
+    if (!restart_file.empty())
+      std::cerr << "polyfloe: restarting from " << restart_file.string() << " (t = " << sim->world().time()
+                << " s, step " << sim->world().step_count() << ")\n";
+  } catch (const run::CheckpointError& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const scene::SceneError& e) {  // a setting found unusable once the world exists, before any output
+    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitFailure;
+  }
+
+  try {
+    std::cerr << "polyfloe: " << sc.name << ": " << sim->world().size() << " bodies, " << sc.time.duration
+              << " s simulated, dt = " << sim->dt() << " s -> " << opt.output_dir.string() << "\n";
+    if (sc.floe_field && args.restart.empty()) std::cerr << "polyfloe: floe field: " << scene::to_string(field) << "\n";
+    const run::RunSummary s = sim->run();
     std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
     if (s.channel_area_passed) {
       std::cout << "Channel: " << *s.channel_area_passed << " m^2 of ice passed the strait entrance; "
@@ -198,9 +247,6 @@ int main(int argc, char** argv) {
   } catch (const run::InstabilityError& e) {
     std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
     return run::kExitUnstable;
-  } catch (const scene::SceneError& e) {  // a setting found unusable once the world exists, before any output
-    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
-    return run::kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "\npolyfloe: error: " << e.what() << "\n";
     return run::kExitFailure;

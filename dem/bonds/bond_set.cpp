@@ -214,4 +214,49 @@ double BondSet::critical_time_step(std::span<const double> mass, std::span<const
   return 2.0 / std::sqrt(w2) * (std::sqrt(1.0 + z * z) - z);
 }
 
+BondState BondSet::state() const {
+  BondState s;
+  s.face_intact = face_intact_;
+  s.face_points_left.assign(face_points_left_.begin(), face_points_left_.end());
+  s.face_broken_time = face_broken_time_;
+  s.point_intact = point_intact_;
+  s.point_sigma = point_sigma_;
+  s.point_tau = point_tau_;
+  s.max_sigma = max_sigma_;
+  s.max_tau = max_tau_;
+  return s;
+}
+
+void BondSet::restore(const BondState& s) {
+  const std::size_t nf = faces(), np = points();
+  if (s.face_intact.size() != nf || s.face_points_left.size() != nf || s.face_broken_time.size() != nf ||
+      s.point_intact.size() != np || s.point_sigma.size() != np || s.point_tau.size() != np) {
+    throw std::invalid_argument("bond state for " + std::to_string(s.face_intact.size()) + " faces and " +
+                                std::to_string(s.point_intact.size()) + " points; this ice has " +
+                                std::to_string(nf) + " faces and " + std::to_string(np) + " points");
+  }
+  std::size_t faces_left = 0, points_left = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const int k = material_.points_per_face;
+    int left = 0;
+    for (std::size_t q = face_first_[f]; q < face_first_[f] + static_cast<std::size_t>(k); ++q)
+      left += s.point_intact[q] ? 1 : 0;
+    if (left != s.face_points_left[f] || (s.face_intact[f] != 0) != (left >= 2))
+      throw std::invalid_argument("bond state: face " + std::to_string(f) + " is inconsistent (" +
+                                  std::to_string(left) + " intact points)");
+    faces_left += s.face_intact[f] ? 1 : 0;
+    points_left += static_cast<std::size_t>(left);
+  }
+  face_intact_ = s.face_intact;
+  face_points_left_.assign(s.face_points_left.begin(), s.face_points_left.end());
+  face_broken_time_ = s.face_broken_time;
+  point_intact_ = s.point_intact;
+  point_sigma_ = s.point_sigma;
+  point_tau_ = s.point_tau;
+  max_sigma_ = s.max_sigma;
+  max_tau_ = s.max_tau;
+  intact_faces_ = faces_left;
+  intact_points_ = points_left;
+}
+
 }  // namespace polyfloe::bonds

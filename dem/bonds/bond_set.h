@@ -66,6 +66,17 @@ struct ElementState {
   std::span<const double> mass;        // [kg]; fixed or kinematic elements: +inf
 };
 
+// The part of a BondSet that changes as the ice breaks: what a checkpoint stores. Everything else is rebuilt from
+// the scene (faces are frozen from the initial geometry).
+struct BondState {
+  std::vector<std::uint8_t> face_intact;      // [F]
+  std::vector<std::int32_t> face_points_left;  // [F]
+  std::vector<double> face_broken_time;       // [F] [s]; NaN while intact
+  std::vector<std::uint8_t> point_intact;     // [P]
+  std::vector<double> point_sigma, point_tau;  // [P] [Pa]
+  double max_sigma = 0.0, max_tau = 0.0;      // [Pa]
+};
+
 class BondSet {
  public:
   explicit BondSet(const BondMaterial& material);
@@ -93,6 +104,11 @@ class BondSet {
   // + 2 (sum of stiffness x lever^2) / I, times the damped-oscillator factor sqrt(1 + z^2) - z with z = 2 zeta [s].
   // +inf without intact faces or when no bonded element is dynamic (mass +inf).
   double critical_time_step(std::span<const double> mass, std::span<const double> inertia) const;
+
+  // The breakable state, and its restoration into a set built from the same faces (checkpoints). restore() throws
+  // std::invalid_argument when the sizes differ or the counts are inconsistent.
+  BondState state() const;
+  void restore(const BondState& s);
 
   // --- inspection (output, tests) ---
   std::size_t faces() const { return face_a_.size(); }

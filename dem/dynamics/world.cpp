@@ -155,8 +155,8 @@ void World::compute_forces(double dt) {
   profile_.forcing += std::chrono::duration<double>(t1 - t0).count();
   if (bonds_) bond_forces(time_ + dt);
   // The linear model of the drift load in the body's velocity, F_d(v) = b - D v with b = F_d(v*) + D v*.
-  lin_force_.resize(n);
-  lin_torque_.resize(n);
+  lin_force_.resize(n, Vec2{0.0, 0.0});  // bodies without drift damping keep 0 (never read)
+  lin_torque_.resize(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const forcing::DriftLoad& d = drift_load_[i];
     if (!d.has_damping()) continue;
@@ -219,6 +219,88 @@ double World::shortest_contact_duration(double speed) const {
   // Two of the lightest, smallest floes meeting: m* = m/2, R* = R/2.
   const double k_n = 4.0 / 3.0 * law_.effective_modulus() * std::sqrt(0.5 * r_min);
   return contact::hertz_contact_duration(k_n, 0.5 * m_min, speed);
+}
+
+WorldState World::state() const {
+  WorldState s;
+  s.time = time_;
+  s.steps = steps_;
+  s.forces_ready = forces_ready_;
+  s.ids = id_;
+  s.position = pos_;
+  s.velocity = vel_;
+  s.force = force_;
+  s.external_force = ext_force_;
+  s.yaw = yaw_;
+  s.omega = omega_;
+  s.torque = torque_;
+  s.external_torque = ext_torque_;
+  s.drift_load = drift_load_;
+  s.lin_force = lin_force_;
+  s.lin_torque = lin_torque_;
+  s.contact_history = cache_.entries();
+  if (bonds_) s.bonds = bonds_->state();
+  s.bonds_failed_last = bonds_failed_last_;
+  return s;
+}
+
+void World::restore(const WorldState& s) {
+  const std::size_t n = size();
+  auto bad = [](const std::string& what) { throw std::invalid_argument("world state: " + what); };
+  if (s.ids.size() != n)
+    bad("it has " + std::to_string(s.ids.size()) + " bodies, this world has " + std::to_string(n));
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.ids[i] != id_[i])
+      bad("body " + std::to_string(i) + " has id " + std::to_string(s.ids[i]) + ", this world's has id " +
+          std::to_string(id_[i]));
+  auto sized = [&](std::size_t got, const char* what, bool optional) {
+    if (got != n && !(optional && got == 0))
+      bad(std::string(what) + " has " + std::to_string(got) + " entries for " + std::to_string(n) + " bodies");
+  };
+  sized(s.position.size(), "position", false);
+  sized(s.velocity.size(), "velocity", false);
+  sized(s.force.size(), "force", false);
+  sized(s.external_force.size(), "external_force", false);
+  sized(s.yaw.size(), "yaw", false);
+  sized(s.omega.size(), "omega", false);
+  sized(s.torque.size(), "torque", false);
+  sized(s.external_torque.size(), "external_torque", false);
+  sized(s.drift_load.size(), "drift_load", true);
+  sized(s.lin_force.size(), "lin_force", true);
+  sized(s.lin_torque.size(), "lin_torque", true);
+  if (s.lin_force.size() != s.lin_torque.size() || (!s.lin_force.empty() && s.drift_load.size() != n))
+    bad("the linear drift model does not match the drift loads");
+  if (s.bonds.has_value() != bonds_.has_value())
+    bad(s.bonds ? "it has bonds, this world has none" : "it has no bonds, this world has");
+  if (!std::isfinite(s.time) || s.time < 0.0) bad("time must be finite and >= 0");
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!s.position[i].allFinite() || !s.velocity[i].allFinite() || !std::isfinite(s.yaw[i]) ||
+        !std::isfinite(s.omega[i]))
+      bad("body " + std::to_string(id_[i]) + " has a non-finite pose or velocity");
+    if (motion_[i] == Motion::fixed && (s.position[i] != pos_[i] || s.yaw[i] != yaw_[i]))
+      bad("fixed body " + std::to_string(id_[i]) + " is not where the scene puts it");
+  }
+  if (bonds_) bonds_->restore(*s.bonds);  // first: it may throw, leaving this World unchanged
+  time_ = s.time;
+  steps_ = s.steps;
+  pos_ = s.position;
+  vel_ = s.velocity;
+  force_ = s.force;
+  ext_force_ = s.external_force;
+  yaw_ = s.yaw;
+  omega_ = s.omega;
+  torque_ = s.torque;
+  ext_torque_ = s.external_torque;
+  drift_load_ = s.drift_load;
+  lin_force_ = s.lin_force;
+  lin_torque_ = s.lin_torque;
+  cache_.restore(s.contact_history);
+  bonds_failed_last_ = s.bonds_failed_last;
+  contacts_.clear();
+  worst_q2_ = worst_v2_ = 0.0;
+  worst_a_ = worst_b_ = -1;
+  update_shapes();
+  forces_ready_ = s.forces_ready;
 }
 
 }  // namespace polyfloe::dynamics

@@ -45,6 +45,26 @@ struct StepProfile {
   std::uint64_t steps = 0;
 };
 
+// Everything that carries from one step to the next and is not rebuilt from the scene: what a checkpoint stores
+// so that a restarted run continues bitwise as the uninterrupted one would. Shapes, masses, quadrature points,
+// bond geometry and world-frame vertices are rebuilt from the scene and the poses.
+struct WorldState {
+  double time = 0.0;                  // [s]
+  std::uint64_t steps = 0;
+  bool forces_ready = false;          // forces below belong to this state
+  std::vector<BodyId> ids;            // [N], the order of every array below
+  std::vector<Vec2> position, velocity, force, external_force;  // [N] [m, m/s, N, N]
+  std::vector<double> yaw, omega, torque, external_torque;     // [N] [rad, rad/s, N m, N m]
+  // The drift load of the last evaluation with its damping matrix, and its linear model's load at v = 0 (empty
+  // or [N]): the next step's velocity prediction reads them.
+  std::vector<forcing::DriftLoad> drift_load;
+  std::vector<Vec2> lin_force;
+  std::vector<double> lin_torque;
+  std::vector<std::pair<contact::PairKey, double>> contact_history;  // tangential springs [m]
+  std::optional<bonds::BondState> bonds;
+  int bonds_failed_last = 0;
+};
+
 class World {
  public:
   explicit World(const WorldSettings& settings);
@@ -121,6 +141,12 @@ class World {
   const WorldSettings& settings() const { return settings_; }
   const contact::ContactLaw& contact_law() const { return law_; }
   const StepProfile& profile() const { return profile_; }
+
+  // The state a checkpoint needs (see WorldState), and its restoration into a World built from the same scene.
+  // restore() throws std::invalid_argument, naming the first mismatch, when the bodies (ids, order) or the bonds
+  // differ, or an array has the wrong size or a non-finite value.
+  WorldState state() const;
+  void restore(const WorldState& s);
 
   // Recompute forces at the current state without moving (called once before the first step, and after a
   // restart). step() keeps them current afterwards.

@@ -360,7 +360,58 @@ void Dataset::read_rows_raw(void* out, DType type, std::uint64_t first, std::uin
   scope.check(H5Dread(handle_.id(), memory_type(type), mspace.id(), fspace.id(), H5P_DEFAULT, out), "H5Dread");
 }
 
+bool Dataset::extendible() const {
+  ErrorScope scope(where());
+  Handle space = scratch(scope, H5Dget_space(handle_.id()), "H5Dget_space");
+  const int rank = scope.check(H5Sget_simple_extent_ndims(space.id()), "H5Sget_simple_extent_ndims");
+  if (rank < 1) return false;
+  std::vector<hsize_t> d(static_cast<std::size_t>(rank)), max(static_cast<std::size_t>(rank));
+  scope.check(H5Sget_simple_extent_dims(space.id(), d.data(), max.data()), "H5Sget_simple_extent_dims");
+  return max[0] == H5S_UNLIMITED;
+}
+
+void Dataset::append_rows_from(const Dataset& source, std::uint64_t rows) {
+  const Dims from = source.dims(), to = dims();
+  if (from.size() != to.size() || !std::equal(from.begin() + (from.empty() ? 0 : 1), from.end(),
+                                              to.begin() + (to.empty() ? 0 : 1))) {
+    ErrorScope(where()).fail("copying rows from " + source.where() + " (a different row shape)");
+  }
+  if (!from.empty() && rows > from[0]) {
+    ErrorScope(where()).fail("copying " + std::to_string(rows) + " rows from " + source.where() + ", which has " +
+                             std::to_string(from[0]));
+  }
+  const DType type = source.dtype();
+  const std::uint64_t row = row_size(from);
+  std::size_t bytes = 8;
+  if (type == DType::f32 || type == DType::i32 || type == DType::u32) bytes = 4;
+  if (type == DType::i8 || type == DType::u8) bytes = 1;
+  // About 64 MiB at a time, at least one row.
+  const std::uint64_t batch = std::max<std::uint64_t>(1, (std::uint64_t{64} << 20) / std::max<std::uint64_t>(1, row * bytes));
+  std::vector<std::uint64_t> buffer;  // 8-byte aligned for every type
+  for (std::uint64_t first = 0; first < rows; first += batch) {
+    const std::uint64_t count = std::min(batch, rows - first);
+    const std::size_t values = count * row;
+    buffer.resize((values * bytes + 7) / 8 + 1);
+    source.read_rows_raw(buffer.data(), type, first, count, values);
+    append_raw(buffer.data(), type, values, count);
+  }
+}
+
 // ----------------------------------------------------------------------------------------------------- Group
+
+std::vector<Group::Child> Group::children() const {
+  ErrorScope scope(where());
+  std::vector<Child> out;
+  auto visit = [](hid_t group, const char* name, const H5L_info_t*, void* data) -> herr_t {
+    auto* list = static_cast<std::vector<Child>*>(data);
+    H5O_info_t info;
+    if (H5Oget_info_by_name2(group, name, &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0) return -1;
+    list->push_back({name, info.type == H5O_TYPE_GROUP});
+    return 0;
+  };
+  scope.check(H5Literate(handle_.id(), H5_INDEX_NAME, H5_ITER_INC, nullptr, visit, &out), "H5Literate");
+  return out;
+}
 
 bool Group::exists(std::string_view child) const {
   const std::string c(child);

@@ -137,6 +137,11 @@ class Dataset : public Object {
     return out;
   }
 
+  // True for a series: unlimited along dimension 0.
+  bool extendible() const;
+  // Appends rows [0, rows) of `source` (same element type class and row shape), a bounded number of rows at a time.
+  void append_rows_from(const Dataset& source, std::uint64_t rows);
+
   static std::uint64_t element_count(const Dims& dims);
   static std::uint64_t row_size(const Dims& dims);  // product of dims 1..rank-1 (1 for rank 1)
 
@@ -155,6 +160,11 @@ class Group : public Object {
   Group() = default;
 
   bool exists(std::string_view child) const;  // a link of that name (group or dataset)
+  struct Child {
+    std::string name;
+    bool group = false;  // else a dataset (or another object kind: named types are not used here)
+  };
+  std::vector<Child> children() const;  // in name order
   Group create_group(std::string_view child);
   Group open_group(std::string_view child) const;
   // Opens the child group, creating it when absent.

@@ -64,6 +64,11 @@ class Hdf5Writer {
   void write_frame(const dynamics::World& world, std::span<const double> extra = {});
   void flush();
   int frames() const;
+  // Continues a run: copies frames 0..frames-1 of every series (extendible dataset) from `previous` (the file of
+  // the interrupted run, same layout) into this newly created file, so that the next write_frame() writes frame
+  // `frames`. Call after every series exists (the driver's too). Throws IoError naming the file when `previous`
+  // cannot be read, lacks a series, has fewer frames, or its series differ in shape.
+  void adopt_frames(const std::filesystem::path& previous, int frames);
   // The /diagnostics group, for series the driver writes itself: append their row for a frame before
   // write_frame(), which flushes the file.
   hdf5::Group& diagnostics();

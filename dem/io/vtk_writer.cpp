@@ -377,6 +377,43 @@ void PvdCollection::add(double time, const std::string& relative_file) {
   write_file_atomic(file_, text());
 }
 
+void PvdCollection::resume(std::span<const double> times, const std::string& stem, const char* extension) {
+  entries_.clear();
+  count_ = 0;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    entries_ += "    <DataSet timestep=\"" + exact(times[k]) + "\" group=\"\" part=\"0\" file=\"" +
+                xml_escape(stem + "/" + frame_name(stem, static_cast<int>(k), extension)) + "\"/>\n";
+    ++count_;
+  }
+  write_file_atomic(file_, text());
+}
+
+namespace {
+
+// Removes DIR/<stem>/<stem>_NNNNNN<extension> for every N >= first (and hidden temporaries of such frames).
+void remove_frames_from(const fs::path& dir, const std::string& stem, const char* extension, int first) {
+  std::error_code ec;
+  const fs::path sub = dir / stem;
+  if (!fs::is_directory(sub, ec)) return;
+  std::vector<fs::path> doomed;
+  for (const auto& entry : fs::directory_iterator(sub, ec)) {
+    std::string f = entry.path().filename().string();
+    if (!f.empty() && f[0] == '.') f.erase(0, 1);
+    const std::string prefix = stem + "_";
+    if (f.rfind(prefix, 0) != 0) continue;
+    const std::size_t digits = f.find_first_not_of("0123456789", prefix.size());
+    if (digits == prefix.size() || digits == std::string::npos) continue;
+    if (f.compare(digits, std::string(extension).size(), extension) != 0) continue;
+    if (std::stol(f.substr(prefix.size(), digits - prefix.size())) >= first) doomed.push_back(entry.path());
+  }
+  for (const fs::path& p : doomed) {
+    fs::remove(p, ec);
+    if (ec) throw IoError("cannot remove " + p.string() + " (a frame after the restart point): " + ec.message());
+  }
+}
+
+}  // namespace
+
 std::string PvdCollection::text() const {
   return "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -426,6 +463,17 @@ void VtkSeriesWriter::write_frame(const dynamics::World& world) {
 }
 
 
+void VtkSeriesWriter::resume(std::span<const double> frame_times, bool bonds) {
+  const int frames = static_cast<int>(frame_times.size());
+  remove_frames_from(dir_, "floes", ".vtp", frames);
+  remove_frames_from(dir_, "contacts", ".vtp", frames);
+  remove_frames_from(dir_, "bonds", ".vtp", frames);
+  floes_pvd_.resume(frame_times, "floes", ".vtp");
+  if (write_contacts_) contacts_pvd_.resume(frame_times, "contacts", ".vtp");
+  if (bonds) bonds_pvd_.resume(frame_times, "bonds", ".vtp");
+  frames_ = frames;
+}
+
 VtkImageSeriesWriter::VtkImageSeriesWriter(const fs::path& dir, std::string stem, const ImageGrid& grid)
     : dir_(dir), stem_(std::move(stem)), grid_(grid), pvd_(dir / (stem_ + ".pvd")) {
   if (grid.nx < 1 || grid.ny < 1 || !(grid.cell > 0.0) || !std::isfinite(grid.cell))
@@ -461,6 +509,13 @@ void VtkImageSeriesWriter::write_frame(double time, std::uint64_t step, std::spa
   write_xml(writer, image, dir_ / file);
   pvd_.add(time, file);
   ++frames_;
+}
+
+void VtkImageSeriesWriter::resume(std::span<const double> frame_times) {
+  const int frames = static_cast<int>(frame_times.size());
+  remove_frames_from(dir_, stem_, ".vti", frames);
+  pvd_.resume(frame_times, stem_, ".vti");
+  frames_ = frames;
 }
 
 }  // namespace polyfloe::io

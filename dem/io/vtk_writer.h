@@ -31,6 +31,9 @@ class PvdCollection {
   std::size_t size() const { return count_; }
   // The whole XML text as it is on disk.
   std::string text() const;
+  // Replaces the entries by frames 0..times.size()-1 named <stem>/<stem>_NNNNNN<extension> (a resumed run) and
+  // rewrites the file.
+  void resume(std::span<const double> times, const std::string& stem, const char* extension);
 
  private:
   std::filesystem::path file_;
@@ -47,6 +50,10 @@ class VtkSeriesWriter {
   // Writes frame number frames() at time world.time() [s]. Throws IoError naming the file on failure.
   void write_frame(const dynamics::World& world);
   int frames() const { return frames_; }
+  // Continues a run whose frames 0..frame_times.size()-1 are on disk: the collections list exactly those, and the
+  // frame files of later frames (written after the checkpoint the run resumes from) are removed. `bonds`: the
+  // world has bonds.
+  void resume(std::span<const double> frame_times, bool bonds);
 
   const std::filesystem::path& directory() const { return dir_; }
 
@@ -85,6 +92,8 @@ class VtkImageSeriesWriter {
   // field's size does not match the grid.
   void write_frame(double time, std::uint64_t step, std::span<const CellField> fields);
   int frames() const { return frames_; }
+  // As VtkSeriesWriter::resume.
+  void resume(std::span<const double> frame_times);
 
  private:
   std::filesystem::path dir_;

@@ -1,6 +1,8 @@
 #include "run/channel_monitor.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace polyfloe::run {
 
@@ -16,6 +18,18 @@ ChannelMonitor::ChannelMonitor(const scene::ChannelSpec& spec, const dynamics::W
       last_flow_time_(world.time()) {
   through_.resize(world.size());
   for (std::size_t i = 0; i < world.size(); ++i) through_[i] = world.positions()[i].x() >= gate_ ? 1 : 0;
+}
+
+void ChannelMonitor::restore(const State& s) {
+  if (s.through.size() != through_.size())
+    throw std::invalid_argument("channel monitor state for " + std::to_string(s.through.size()) + " bodies, the run has " +
+                                std::to_string(through_.size()));
+  through_ = s.through;
+  last_time_ = s.last_time;
+  last_flow_time_ = s.last_flow_time;
+  passed_ = s.passed;
+  stalled_since_ = s.stalled_since;
+  jam_time_ = s.jam_time;
 }
 
 ChannelSample ChannelMonitor::sample(const dynamics::World& world) {

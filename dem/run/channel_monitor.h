@@ -37,6 +37,16 @@ class ChannelMonitor {
   std::optional<double> jam_time() const { return jam_time_; }  // [s]
   double area_passed() const { return passed_; }                // [m^2]
 
+  // What carries from one sample to the next (checkpoints).
+  struct State {
+    std::vector<std::uint8_t> through;
+    double last_time = 0.0, last_flow_time = 0.0, passed = 0.0;  // [s], [s], [m^2]
+    std::optional<double> stalled_since, jam_time;                // [s]
+  };
+  State state() const { return {through_, last_time_, last_flow_time_, passed_, stalled_since_, jam_time_}; }
+  // Throws std::invalid_argument if the body count differs.
+  void restore(const State& s);
+
  private:
   double funnel_start_, gate_, strait_end_, y_lo_, y_hi_, jam_window_, jam_speed_;
   std::vector<std::uint8_t> through_;  // per body: centroid at or past the gate at the last sample

@@ -131,31 +131,119 @@ void check_stability(const dynamics::World& w, double dt, double reference_speed
   }
 }
 
-Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options)
-    : scene_(scene), world_(std::move(world)), options_(options) {}
+namespace {
+
+// The lines of the `output` block of a resolved scene, without its checkpoint settings (which a restart may change).
+std::string output_block(const std::string& resolved) {
+  std::string out, line;
+  std::istringstream in(resolved);
+  bool inside = false, checkpoint = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] != ' ' && line[0] != '#') {
+      inside = line.rfind("output:", 0) == 0;
+      continue;
+    }
+    if (!inside) continue;
+    if (line.rfind("  ", 0) == 0 && line.size() > 2 && line[2] != ' ') checkpoint = line.rfind("  checkpoint:", 0) == 0;
+    if (!checkpoint) out += line + "\n";
+  }
+  return out;
+}
+
+void prune_checkpoints(const std::filesystem::path& output_dir, int keep) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(output_dir / "checkpoints", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() == 20 && name.rfind("checkpoint_", 0) == 0 && entry.path().extension() == ".h5")
+      files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (std::size_t k = 0; k + static_cast<std::size_t>(keep) < files.size(); ++k) fs::remove(files[k], ec);
+}
+
+}  // namespace
+
+Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options,
+                       std::optional<Checkpoint> restart, const std::filesystem::path& restart_file)
+    : scene_(scene), world_(std::move(world)), options_(options) {
+  namespace fs = std::filesystem;
+  // From the world as the scene builds it (a restart's bonds may since have broken, which would change the step).
+  dt_ = scene::time_step(scene_, world_);
+  signature_ = body_signature(world_);
+  const scene::VelocityGridSettings& grid_settings = scene_.output.velocity_grid;
+  if (grid_settings.enabled && (scene_.output.vtk || scene_.output.hdf5))
+    grid_geometry_ = velocity_grid_geometry(grid_settings, world_);  // may refuse before any output exists
+  if (!restart) return;
+
+  const Checkpoint& c = *restart;
+  const std::string where = "checkpoint " + restart_file.string() + ": ";
+  check_restart(c, restart_file, world_);
+  if (output_block(c.scene_resolved) != output_block(scene::resolved_yaml(scene_)))
+    throw CheckpointError(where + "the scene's output settings differ from those of the interrupted run; a restart "
+                          "continues its output series, so they must be the same (output.checkpoint may change)");
+  const fs::path dir = options_.output_dir;
+  std::error_code ec;
+  const int frames = c.frames;
+  if (scene_.output.hdf5) {
+    fs::path previous = dir / kInterruptedResults;
+    if (!fs::exists(previous, ec)) previous = dir / "results.h5";
+    if (!fs::exists(previous, ec))
+      throw CheckpointError(where + "the interrupted run's results are not in " + dir.string() +
+                            " (no results.h5); give its output folder with -o");
+    try {
+      const io::hdf5::File f(previous, io::hdf5::File::Mode::read_only);
+      const io::hdf5::Dataset t = f.root().open_dataset("time");
+      if (t.rows() < static_cast<std::uint64_t>(frames))
+        throw CheckpointError(where + previous.string() + " has " + std::to_string(t.rows()) +
+                              " frames, the checkpoint follows frame " + std::to_string(frames - 1));
+      const std::vector<double> last = t.read_rows<double>(static_cast<std::uint64_t>(frames - 1), 1);
+      if (last[0] != c.frame_times.back())
+        throw CheckpointError(where + previous.string() + " has frame " + std::to_string(frames - 1) + " at t = " +
+                              std::to_string(last[0]) + " s, the checkpoint at t = " +
+                              std::to_string(c.frame_times.back()) + " s: they belong to different runs");
+    } catch (const io::IoError& e) {
+      throw CheckpointError(where + "the interrupted run's " + previous.string() + " cannot be read (" + e.what() +
+                            "); restart into a new folder with -o to rerun from the start");
+    }
+  }
+  if (scene_.output.vtk) {
+    char name[32];
+    std::snprintf(name, sizeof name, "floes/floes_%06d.vtp", frames - 1);
+    if (!fs::exists(dir / name, ec))
+      throw CheckpointError(where + "the interrupted run's frame " + (dir / name).string() + " is missing");
+  }
+  try {
+    world_.restore(c.world);
+  } catch (const std::invalid_argument& e) {
+    throw CheckpointError(where + e.what());
+  }
+  if (scene_.channel && !c.channel) throw CheckpointError(where + "has no channel monitor state; the scene has a channel");
+  if (grid_geometry_ && !c.next_sample) throw CheckpointError(where + "has no velocity grid state; the scene has a grid");
+  restart_ = std::move(restart);
+}
 
 RunSummary Simulation::run() {
   namespace fs = std::filesystem;
   using clock = std::chrono::steady_clock;
   const auto wall0 = clock::now();
-  const double dt = scene::time_step(scene_, world_);
+  const double dt = dt_;
   const double v_ref = scene::reference_speed(scene_);
   const double t_end = scene_.time.duration;
   const double interval = scene_.output.interval;
-
   const scene::VelocityGridSettings& grid_settings = scene_.output.velocity_grid;
-  std::optional<GridGeometry> grid_geometry;
-  if (grid_settings.enabled && (scene_.output.vtk || scene_.output.hdf5))
-    grid_geometry = velocity_grid_geometry(grid_settings, world_);  // may refuse before any output exists
+  const scene::CheckpointSettings& checkpoints = scene_.output.checkpoint;
+  const fs::path& out = options_.output_dir;
 
-  fs::create_directories(options_.output_dir);
-  clear_previous_outputs(options_.output_dir);
-  io::write_file_atomic(options_.output_dir / "scene.resolved.yaml", scene::resolved_yaml(scene_));
+  fs::create_directories(out);
+  if (!restart_) clear_previous_outputs(out);
+  io::write_file_atomic(out / "scene.resolved.yaml", scene::resolved_yaml(scene_));
 
   const double rho_w = scene_.world.drift.water_density;
   std::unique_ptr<io::VtkSeriesWriter> vtk;
   std::unique_ptr<io::Hdf5Writer> h5;
-  if (scene_.output.vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options_.output_dir, scene_.output.contacts, rho_w);
+  if (scene_.output.vtk) vtk = std::make_unique<io::VtkSeriesWriter>(out, scene_.output.contacts, rho_w);
   std::optional<ChannelMonitor> channel;
   std::vector<io::ExtraSeries> extra;
   if (scene_.channel) {
@@ -169,16 +257,24 @@ RunSummary Simulation::run() {
              {"channel", "strait_mean_speed", "m/s", "mean speed of the floes in the strait"},
              {"channel", "jammed", "1", "1 while no ice has passed for channel.jam_window and the funnel's ice is slower than channel.jam_speed"}};
   }
+  fs::path interrupted;  // a restart: the interrupted run's results.h5, moved aside while its frames are copied
+  if (restart_ && scene_.output.hdf5) {
+    interrupted = out / kInterruptedResults;
+    std::error_code ec;
+    if (!fs::exists(interrupted, ec)) fs::rename(out / "results.h5", interrupted);
+  }
   if (scene_.output.hdf5) {
     io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
-    h5 = std::make_unique<io::Hdf5Writer>(options_.output_dir / "results.h5", world_, info, rho_w, extra);
+    h5 = std::make_unique<io::Hdf5Writer>(out / "results.h5", world_, info, rho_w, extra);
   }
   std::optional<VelocityGridRecorder> velocity_grid;
-  if (grid_geometry) {
-    velocity_grid.emplace(*grid_geometry, interval / grid_settings.samples_per_frame,
-                          scene_.output.vtk ? options_.output_dir : fs::path(), h5.get());
+  if (grid_geometry_) {
+    velocity_grid.emplace(*grid_geometry_, interval / grid_settings.samples_per_frame,
+                          scene_.output.vtk ? out : fs::path(), h5.get());
   }
   int frames = 0;
+  std::vector<double> frame_times;
+  double next_frame = interval;
   std::vector<double> extra_values;
   auto write_frame = [&] {
     extra_values.clear();
@@ -192,28 +288,83 @@ RunSummary Simulation::run() {
     if (velocity_grid) velocity_grid->write_frame(world_);
     if (h5) h5->write_frame(world_, extra_values);
     ++frames;
+    frame_times.push_back(world_.time());
+  };
+  auto checkpoint = [&](const char* kind, const fs::path& file) {
+    Checkpoint c;
+    c.kind = kind;
+    c.code_version = options_.version;
+    c.scene_resolved = scene::resolved_yaml(scene_);
+    c.body_signature = signature_;
+    c.dt = dt;
+    c.frames = frames;
+    c.frame_times = frame_times;
+    c.next_frame = next_frame;
+    c.world = world_.state();
+    if (channel) c.channel = channel->state();
+    if (velocity_grid) c.next_sample = velocity_grid->next_sample();
+    write_checkpoint(file, c);
   };
 
-  world_.compute_forces(0.0);
-  write_frame();
+  if (restart_) {
+    const Checkpoint& c = *restart_;
+    frames = c.frames;
+    frame_times = c.frame_times;
+    next_frame = c.next_frame;
+    if (h5) {
+      h5->adopt_frames(interrupted, frames);
+      fs::remove(interrupted);
+    }
+    if (vtk) vtk->resume(frame_times, world_.bonds() != nullptr);
+    if (velocity_grid) velocity_grid->resume(*c.next_sample, frame_times);
+    if (channel) channel->restore(*c.channel);
+  } else {
+    world_.compute_forces(0.0);
+    write_frame();
+  }
   io::Progress progress(t_end, options_.interactive);
 
   // Steps of equal size; the last one is shortened to land on t_end. Frames at the first step at or after each
-  // multiple of the output interval.
-  double next_frame = interval;
-  while (world_.time() < t_end * (1.0 - 1e-12)) {
-    const double h = std::min(dt, t_end - world_.time());
-    world_.step(h);
-    const bool last = world_.time() >= t_end * (1.0 - 1e-12);
-    // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check
-    // costs a few ns per body against ~200 ns per body for the step.
-    check_stability(world_, dt, v_ref);
-    if (velocity_grid) velocity_grid->after_step(world_);
-    if (last || world_.time() >= next_frame * (1.0 - 1e-12)) {
-      write_frame();
-      next_frame = interval * (std::floor(world_.time() / interval * (1.0 + 1e-12)) + 1.0);
+  // multiple of the output interval; checkpoints at every `checkpoints.every`-th frame and at the end.
+  try {
+    while (world_.time() < t_end * (1.0 - 1e-12)) {
+      const double h = std::min(dt, t_end - world_.time());
+      world_.step(h);
+      const bool last = world_.time() >= t_end * (1.0 - 1e-12);
+      // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check
+      // costs a few ns per body against ~200 ns per body for the step.
+      check_stability(world_, dt, v_ref);
+      if (velocity_grid) velocity_grid->after_step(world_);
+      if (last || world_.time() >= next_frame * (1.0 - 1e-12)) {
+        next_frame = interval * (std::floor(world_.time() / interval * (1.0 + 1e-12)) + 1.0);
+        write_frame();
+        if (checkpoints.every > 0 && (last || frames % checkpoints.every == 0)) {
+          checkpoint(last ? "final" : "frame", checkpoint_path(out, frames));
+          prune_checkpoints(out, checkpoints.keep);
+        }
+      }
+      progress.update(world_.time(), world_.step_count());
     }
-    progress.update(world_.time(), world_.step_count());
+  } catch (const InstabilityError& e) {
+    std::string message = e.what();
+    if (checkpoints.every > 0) {
+      const fs::path file = out / "checkpoints" / "unstable.h5";
+      try {
+        checkpoint("unstable", file);
+        message += " The state at that moment is in " + file.string() + " (for inspection)";
+        fs::path last;
+        try {
+          last = find_checkpoint(out);
+        } catch (const CheckpointError&) {
+          // none yet: the run failed before its first checkpoint
+        }
+        message += last.empty() ? "." : "; to continue with the change above, restart from the last checkpoint: "
+                                        "polyfloe run SCENE --restart " + last.string() + ".";
+      } catch (const std::exception& w) {
+        message += std::string(" (the state could not be saved: ") + w.what() + ")";
+      }
+    }
+    throw InstabilityError(message);
   }
   progress.finish(world_.time(), world_.step_count());
 

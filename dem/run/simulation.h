@@ -9,6 +9,8 @@
 #include <string>
 
 #include "dynamics/world.h"
+#include "io/vtk_writer.h"
+#include "run/checkpoint.h"
 #include "scene/scene.h"
 
 namespace polyfloe::run {
@@ -30,6 +32,10 @@ struct RunOptions {
   std::string version;               // code version stored in the outputs
 };
 
+// The interrupted run's results.h5 is moved here while a restart copies its frames into a new one (kept if the
+// restart itself is interrupted, and used by the next restart).
+inline constexpr const char* kInterruptedResults = ".results.h5.interrupted";
+
 struct RunSummary {
   std::uint64_t steps = 0;
   double simulated = 0.0;   // [s]
@@ -50,15 +56,26 @@ void check_contact_resolution(const dynamics::World& world, double dt);
 
 class Simulation {
  public:
-  Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options);
-  // Runs to scene.time.duration. Throws InstabilityError (exit 3) or std::exception (exit 1).
+  // `world` as built from `scene`. With `restart` (a checkpoint of a run of this scene, read from `restart_file`),
+  // the run continues from it in options.output_dir, where the interrupted run's outputs must be: the constructor
+  // checks the checkpoint against the world and those outputs and restores the state, before any file is touched.
+  // Throws CheckpointError or scene::SceneError (bad input: exit 2).
+  Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options,
+             std::optional<Checkpoint> restart = std::nullopt, const std::filesystem::path& restart_file = {});
+  // Runs to scene.time.duration. Throws InstabilityError (exit 3) or std::exception (exit 1). With checkpoints on,
+  // an unstable run leaves its state in DIR/checkpoints/unstable.h5 for inspection.
   RunSummary run();
   const dynamics::World& world() const { return world_; }
+  double dt() const { return dt_; }
 
  private:
   const scene::Scene& scene_;
   dynamics::World world_;
   RunOptions options_;
+  double dt_ = 0.0;
+  std::string signature_;
+  std::optional<io::ImageGrid> grid_geometry_;
+  std::optional<Checkpoint> restart_;
 };
 
 }  // namespace polyfloe::run

@@ -162,6 +162,12 @@ void VelocityGridRecorder::after_step(const dynamics::World& world) {
   next_sample_ = interval_ * (std::floor(t / interval_ * (1.0 + 1e-12)) + 1.0);
 }
 
+void VelocityGridRecorder::resume(double next_sample, std::span<const double> frame_times) {
+  if (!std::isfinite(next_sample)) throw std::invalid_argument("velocity grid: the next sample time must be finite");
+  next_sample_ = next_sample;
+  if (vtk_) vtk_->resume(frame_times);
+}
+
 void VelocityGridRecorder::write_frame(const dynamics::World& world) {
   if (grid_.samples() == 0) grid_.sample(world);
   const VelocityGrid::Frame f = grid_.take();

@@ -69,6 +69,10 @@ class VelocityGridRecorder {
   // last frame (sampling now if nothing was sampled since).
   void write_frame(const dynamics::World& world);
   const GridGeometry& geometry() const { return grid_.geometry(); }
+  // For checkpoints, taken right after a frame (nothing accumulated): the next sample time [s]; and resuming a run
+  // at such a checkpoint with frames 0..frame_times.size()-1 on disk (the VTK series is cut back to them).
+  double next_sample() const { return next_sample_; }
+  void resume(double next_sample, std::span<const double> frame_times);
 
  private:
   VelocityGrid grid_;

@@ -79,6 +79,9 @@ std::string resolved_yaml(const Scene& s) {
                  : std::string("auto"))
     << "  # [m] xmin, ymin, xmax, ymax\n"
     << "    samples_per_frame: " << g.samples_per_frame << "\n";
+  o << "  checkpoint:\n"
+    << "    every: " << s.output.checkpoint.every << "  # [frames] 0 = no checkpoints\n"
+    << "    keep: " << s.output.checkpoint.keep << "  # newest checkpoints kept\n";
   const contact::ContactLawSettings& c = s.world.contact;
   o << "ice:\n"
     << "  density: " << fmt(s.ice_density) << "  # [kg/m^3]\n"

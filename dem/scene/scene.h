@@ -44,12 +44,21 @@ struct VelocityGridSettings {
   int samples_per_frame = 10;                    // samples per output interval, evenly spaced [-], 1..1000
 };
 
+// Checkpoints (run/checkpoint.h): the full state at an output frame, DIR/checkpoints/checkpoint_NNNNNN.h5 (NNNNNN =
+// frames written), from which `polyfloe run SCENE --restart` continues bitwise as the uninterrupted run would.
+struct CheckpointSettings {
+  int every = 10;  // frames between checkpoints [-], 0..100000; 0 = none (the final and the instability
+                   // checkpoints are still written unless every = 0)
+  int keep = 2;    // newest checkpoints kept [-], 1..1000
+};
+
 struct OutputSettings {
   double interval = 5.0;      // simulated time between frames [s], > 0
   bool vtk = true;            // VTK .vtp frames + .pvd series
   bool contacts = true;       // contact series (.vtp + .pvd) alongside the floes
   bool hdf5 = true;           // results.h5
   VelocityGridSettings velocity_grid;
+  CheckpointSettings checkpoint;
 };
 
 // A floe (or wall, or plate) listed explicitly.

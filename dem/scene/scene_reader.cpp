@@ -83,6 +83,12 @@ void read_output(MapReader m, OutputSettings& o) {
   m.boolean("contacts", o.contacts);
   m.boolean("hdf5", o.hdf5);
   read_velocity_grid(m.block("velocity_grid"), o.velocity_grid);
+  {
+    MapReader c = m.block("checkpoint");
+    c.integer("every", o.checkpoint.every, 0, 100000);
+    c.integer("keep", o.checkpoint.keep, 1, 1000);
+    c.finish();
+  }
   m.finish();
 }
 

@@ -1,0 +1,364 @@
+// Checkpoint and restart, and crash-safe output: a run killed with SIGKILL at random moments and restarted from its
+// newest checkpoint each time ends bitwise where the uninterrupted run ends (every HDF5 dataset, every VTK file,
+// the final state); after every kill each completed frame and the newest checkpoint read back; bad checkpoints
+// and mismatched restarts are refused with exit code 2 before any output is touched; an unstable run leaves its
+// state for inspection.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "io/hdf5_file.h"
+#include "pvd.h"
+#include "run/checkpoint.h"
+
+namespace fs = std::filesystem;
+using polyfloe::io::hdf5::Dataset;
+using polyfloe::io::hdf5::File;
+using polyfloe::io::hdf5::Group;
+
+namespace {
+
+const std::string kSource = POLYFLOE_SOURCE_DIR;
+
+// Starts polyfloe with `args`, stdout and stderr to `log`.
+pid_t spawn(const std::vector<std::string>& args, const fs::path& log) {
+  std::vector<std::string> all{POLYFLOE_BINARY};
+  all.insert(all.end(), args.begin(), args.end());
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::FILE* f = std::fopen(log.c_str(), "w");
+    if (f) {
+      dup2(fileno(f), 1);
+      dup2(fileno(f), 2);
+    }
+    std::vector<char*> argv;
+    for (std::string& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// Exit code, or -signal.
+int wait_for(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+int run_to_end(const std::vector<std::string>& args, const fs::path& log) { return wait_for(spawn(args, log)); }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Every dataset of the file by path, as raw bytes of its values read as doubles / integers.
+void collect(const Group& g, const std::string& prefix, std::vector<std::pair<std::string, std::vector<std::uint64_t>>>& out) {
+  using polyfloe::io::hdf5::DType;
+  for (const Group::Child& c : g.children()) {
+    const std::string name = prefix + "/" + c.name;
+    if (c.group) {
+      collect(g.open_group(c.name), name, out);
+      continue;
+    }
+    const Dataset d = g.open_dataset(c.name);
+    std::vector<std::uint64_t> bits;
+    if (d.dtype() == DType::f64 || d.dtype() == DType::f32) {
+      for (double v : d.read<double>()) {
+        std::uint64_t b;
+        std::memcpy(&b, &v, sizeof b);
+        bits.push_back(b);
+      }
+    } else if (d.dtype() == DType::u64) {
+      bits = d.read<std::uint64_t>();
+    } else {
+      for (std::int64_t v : d.read<std::int64_t>()) bits.push_back(static_cast<std::uint64_t>(v));
+    }
+    out.emplace_back(name, std::move(bits));
+  }
+}
+
+std::vector<std::pair<std::string, std::vector<std::uint64_t>>> datasets(const fs::path& file) {
+  const File f(file, File::Mode::read_only);
+  std::vector<std::pair<std::string, std::vector<std::uint64_t>>> out;
+  collect(f.root(), "", out);
+  return out;
+}
+
+// The files of a run's VTK series, relative to its folder.
+std::vector<std::string> vtk_files(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const char* sub : {"floes", "contacts", "bonds", "velocity"}) {
+    if (!fs::is_directory(dir / sub)) continue;
+    for (const auto& e : fs::directory_iterator(dir / sub)) out.push_back(std::string(sub) + "/" + e.path().filename().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// After a kill: every frame the series list is complete and readable, results.h5 opens and holds at least the
+// frames of the newest checkpoint, and that checkpoint reads back.
+void expect_readable_after_kill(const fs::path& dir) {
+  for (const char* pvd : {"floes.pvd", "contacts.pvd", "bonds.pvd", "velocity.pvd"}) {
+    if (!fs::exists(dir / pvd)) continue;
+    const auto entries = polyfloe::tsupport::read_pvd(dir / pvd);
+    const std::string text = slurp(dir / pvd);
+    EXPECT_NE(text.find("</VTKFile>"), std::string::npos) << pvd << " is not a complete collection";
+    for (const auto& [t, file] : entries) {
+      EXPECT_TRUE(fs::exists(dir / file)) << pvd << " lists " << file << " at t = " << t << ", which is missing";
+      const std::string body = slurp(dir / file);
+      EXPECT_NE(body.find("</VTKFile>"), std::string::npos) << file << " is incomplete";
+    }
+  }
+  std::size_t frames_in_h5 = 0;
+  for (const char* name : {"results.h5", ".results.h5.interrupted"}) {
+    if (!fs::exists(dir / name)) continue;
+    try {
+      const File f(dir / name, File::Mode::read_only);
+      frames_in_h5 = std::max<std::size_t>(frames_in_h5, f.root().open_dataset("time").rows());
+      if (std::string(name) == ".results.h5.interrupted") break;  // the restart's source of truth
+    } catch (const std::exception& e) {
+      if (std::string(name) == "results.h5" && fs::exists(dir / ".results.h5.interrupted")) continue;  // being rebuilt
+      ADD_FAILURE() << name << " is unreadable after the kill: " << e.what();
+    }
+  }
+  if (fs::is_directory(dir / "checkpoints")) {
+    const fs::path newest = polyfloe::run::find_checkpoint(dir);
+    const polyfloe::run::Checkpoint c = polyfloe::run::read_checkpoint(newest);  // throws if unreadable
+    EXPECT_GE(frames_in_h5, static_cast<std::size_t>(c.frames)) << "results.h5 lost frames of " << newest;
+  }
+}
+
+struct Interrupted {
+  int kills = 0;      // kills that hit a running simulation
+  int restarts = 0;   // runs started with --restart
+};
+
+// Runs `args` into `dir`, killing it `kills` times at random moments (uniform over the part of the uninterrupted
+// run's wall time `wall` still to go; `duration` is the simulated time [s]), each time restarting from the newest
+// checkpoint (or afresh before the first), then lets it finish.
+Interrupted run_with_kills(const std::vector<std::string>& args, const fs::path& dir, int kills, double wall,
+                           double duration, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> when(0.15, 0.85);
+  Interrupted r;
+  auto next_args = [&] {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"-o", dir.string()});
+    if (fs::is_directory(dir / "checkpoints") && !fs::is_empty(dir / "checkpoints")) {
+      a.insert(a.end(), {"--restart", dir.string()});
+      ++r.restarts;
+    }
+    return a;
+  };
+  for (int k = 0; k < kills; ++k) {
+    // A random moment of what is left to run (the uninterrupted run's wall time scaled by the simulated time left).
+    double done = 0.0;
+    if (fs::is_directory(dir / "checkpoints") && !fs::is_empty(dir / "checkpoints"))
+      done = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(dir)).world.time / duration;
+    const pid_t pid = spawn(next_args(), dir.string() + ".log");
+    std::this_thread::sleep_for(std::chrono::duration<double>(when(rng) * wall * (1.0 - done)));
+    kill(pid, SIGKILL);
+    const int code = wait_for(pid);
+    if (code == -SIGKILL) ++r.kills;
+    else EXPECT_EQ(code, 0) << slurp(dir.string() + ".log");
+    expect_readable_after_kill(dir);
+  }
+  const int code = run_to_end(next_args(), dir.string() + ".log");
+  EXPECT_EQ(code, 0) << slurp(dir.string() + ".log");
+  return r;
+}
+
+void expect_same_run(const fs::path& a, const fs::path& b) {
+  const auto da = datasets(a / "results.h5"), db = datasets(b / "results.h5");
+  ASSERT_EQ(da.size(), db.size());
+  for (std::size_t k = 0; k < da.size(); ++k) {
+    EXPECT_EQ(da[k].first, db[k].first);
+    EXPECT_TRUE(da[k].second == db[k].second) << "results.h5:" << da[k].first << " differs";
+  }
+  const auto fa = vtk_files(a), fb = vtk_files(b);
+  EXPECT_EQ(fa, fb);
+  for (const std::string& f : fa) EXPECT_TRUE(slurp(a / f) == slurp(b / f)) << f << " differs";
+  for (const char* pvd : {"floes.pvd", "contacts.pvd", "bonds.pvd", "velocity.pvd"})
+    EXPECT_EQ(slurp(a / pvd), slurp(b / pvd)) << pvd;
+  // The final state, including what no output shows (forces, drift loads, spring history, bond stresses).
+  const auto ca = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(a));
+  const auto cb = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(b));
+  EXPECT_EQ(ca.frames, cb.frames);
+  const auto& wa = ca.world;
+  const auto& wb = cb.world;
+  EXPECT_EQ(wa.steps, wb.steps);
+  EXPECT_EQ(std::memcmp(&wa.time, &wb.time, sizeof wa.time), 0);
+  auto same = [](const auto& x, const auto& y) {
+    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof x[0]) == 0);
+  };
+  EXPECT_TRUE(same(wa.position, wb.position));
+  EXPECT_TRUE(same(wa.velocity, wb.velocity));
+  EXPECT_TRUE(same(wa.yaw, wb.yaw));
+  EXPECT_TRUE(same(wa.omega, wb.omega));
+  EXPECT_TRUE(same(wa.force, wb.force));
+  EXPECT_TRUE(same(wa.torque, wb.torque));
+  EXPECT_TRUE(same(wa.lin_force, wb.lin_force));
+  ASSERT_EQ(wa.contact_history.size(), wb.contact_history.size());
+  for (std::size_t k = 0; k < wa.contact_history.size(); ++k) {
+    EXPECT_TRUE(wa.contact_history[k].first == wb.contact_history[k].first);
+    EXPECT_EQ(std::memcmp(&wa.contact_history[k].second, &wb.contact_history[k].second, sizeof(double)), 0);
+  }
+  ASSERT_EQ(wa.bonds.has_value(), wb.bonds.has_value());
+  if (wa.bonds) {
+    EXPECT_TRUE(same(wa.bonds->point_intact, wb.bonds->point_intact));
+    EXPECT_TRUE(same(wa.bonds->point_sigma, wb.bonds->point_sigma));
+    EXPECT_TRUE(same(wa.bonds->face_broken_time, wb.bonds->face_broken_time));
+  }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+TEST(Restart, KilledChannelRunRestartsBitwise) {
+  // The channel scene shortened: 1,158 floes and walls, contacts with friction history, all drift terms, the
+  // channel monitor and the velocity grid; frames every 0.25 s, a checkpoint every 2 frames.
+  const std::vector<std::string> args{"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=6",
+                                      "--set", "output.interval=0.25", "--set", "output.checkpoint.every=2",
+                                      "--set", "output.checkpoint.keep=2"};
+  const fs::path base = fs::temp_directory_path() / "polyfloe_restart_channel";
+  fs::remove_all(base);
+  fs::create_directories(base);
+  std::vector<std::string> a = args;
+  a.insert(a.end(), {"-o", (base / "whole").string()});
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run_to_end(a, base / "whole.log"), 0) << slurp(base / "whole.log");
+  const double wall = seconds_since(t0);
+
+  const Interrupted r = run_with_kills(args, base / "killed", 4, wall, 6.0, 20261122);
+  std::printf("uninterrupted run %.2f s wall; %d kills hit the running simulation, %d restarts\n", wall, r.kills,
+              r.restarts);
+  EXPECT_GE(r.kills, 3);
+  EXPECT_GE(r.restarts, 2);
+  expect_same_run(base / "whole", base / "killed");
+  // Checkpoints are pruned to the newest `keep`; the final one is among them.
+  int count = 0;
+  for (const auto& e : fs::directory_iterator(base / "killed" / "checkpoints")) count += e.path().filename().string().rfind("checkpoint_", 0) == 0;
+  EXPECT_EQ(count, 2);
+  fs::remove_all(base);
+}
+
+TEST(Restart, KilledFrozenSheetRunRestartsBitwise) {
+  // A small frozen sheet of triangles squeezed between plates until its bonds break: the bond state (intact points,
+  // stresses, broken times) carries across the restarts.
+  const std::vector<std::string> args{
+      "run", kSource + "/dem/scenes/uniaxial_compression.yaml", "--set", "ice_sheet.region=[0,0,60,60]", "--set",
+      "ice_sheet.cell_size=8", "--set", "ice_sheet.bonds.tensile_strength=1e5", "--set",
+      "ice_sheet.bonds.shear_strength=1e5", "--set", "floes.0.position=[-10,30]", "--set", "floes.1.position=[70,30]",
+      "--set", "run.duration=0.3", "--set", "output.interval=0.01", "--set", "output.checkpoint.every=3"};
+  const fs::path base = fs::temp_directory_path() / "polyfloe_restart_sheet";
+  fs::remove_all(base);
+  fs::create_directories(base);
+  std::vector<std::string> a = args;
+  a.insert(a.end(), {"-o", (base / "whole").string()});
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run_to_end(a, base / "whole.log"), 0) << slurp(base / "whole.log");
+  const double wall = seconds_since(t0);
+  {
+    const File f(base / "whole" / "results.h5", File::Mode::read_only);
+    const auto intact = f.root().open_group("bonds").open_dataset("intact_faces").read<std::int64_t>();
+    ASSERT_LT(intact.back(), intact.front()) << "the test needs bonds that break";
+  }
+  const Interrupted r = run_with_kills(args, base / "killed", 2, wall, 0.3, 7);
+  EXPECT_GE(r.kills, 1);
+  expect_same_run(base / "whole", base / "killed");
+  fs::remove_all(base);
+}
+
+TEST(Restart, BadCheckpointsAreRefusedBeforeAnyOutputIsTouched) {
+  const std::string scene = kSource + "/dem/scenes/two_floes.yaml";
+  const fs::path base = fs::temp_directory_path() / "polyfloe_restart_bad";
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const fs::path run = base / "run";
+  ASSERT_EQ(run_to_end({"run", scene, "-o", run.string(), "--set", "output.checkpoint.every=1"}, base / "log"), 0)
+      << slurp(base / "log");
+  const fs::path good = polyfloe::run::find_checkpoint(run);
+  const std::string results = slurp(run / "results.h5"), floes = slurp(run / "floes.pvd");
+
+  auto refused = [&](const std::vector<std::string>& args, const std::string& expect) {
+    SCOPED_TRACE(expect);
+    const int code = run_to_end(args, base / "log");
+    const std::string log = slurp(base / "log");
+    EXPECT_EQ(code, 2) << log;
+    EXPECT_NE(log.find(expect), std::string::npos) << log;
+    // The interrupted run's outputs are untouched.
+    EXPECT_TRUE(slurp(run / "results.h5") == results);
+    EXPECT_EQ(slurp(run / "floes.pvd"), floes);
+  };
+  refused({"run", scene, "--restart", (base / "missing.h5").string()}, "missing.h5: no such file or folder");
+  std::ofstream(base / "text.h5") << "not HDF5\n";
+  refused({"run", scene, "--restart", (base / "text.h5").string()}, "text.h5: cannot be read");
+  {  // truncated
+    const std::string bytes = slurp(good);
+    std::ofstream(base / "truncated.h5", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  refused({"run", scene, "--restart", (base / "truncated.h5").string(), "-o", run.string()}, "truncated.h5");
+  {  // an HDF5 file that is not a checkpoint: the results file itself
+    fs::copy_file(run / "results.h5", base / "results_copy.h5");
+  }
+  refused({"run", scene, "--restart", (base / "results_copy.h5").string()}, "not a PolyFloe checkpoint");
+  // Another scene's bodies.
+  refused({"run", kSource + "/dem/scenes/drift_tidal.yaml", "--restart", good.string()},
+          "was written for other bodies than the scene builds");
+  refused({"run", scene, "--set", "floes.0.thickness=2", "--restart", good.string()}, "was written for other bodies");
+  // Output settings changed.
+  refused({"run", scene, "--set", "output.interval=0.5", "--restart", good.string()}, "output settings differ");
+  // A folder without checkpoints.
+  fs::create_directories(base / "empty");
+  refused({"run", scene, "--restart", (base / "empty").string()}, "no checkpoint");
+  // The outputs of the run are gone.
+  fs::create_directories(base / "elsewhere");
+  refused({"run", scene, "--restart", good.string(), "-o", (base / "elsewhere").string()}, "no results.h5");
+  EXPECT_TRUE(fs::is_empty(base / "elsewhere"));
+  // The schedule's keys are checked like every other.
+  refused({"run", scene, "--set", "output.checkpoint.every=-1", "--restart", good.string()}, "output.checkpoint.every");
+  refused({"run", scene, "--set", "output.checkpoint.keep=0", "--restart", good.string()}, "output.checkpoint.keep");
+  // --restart is an option of run only.
+  EXPECT_EQ(run_to_end({"check", scene, "--restart", good.string()}, base / "log"), 2);
+  fs::remove_all(base);
+}
+
+TEST(Restart, UnstableRunLeavesItsStateForInspection) {
+  const std::string scene = kSource + "/dem/scenes/two_floes.yaml";
+  const fs::path out = fs::temp_directory_path() / "polyfloe_restart_unstable";
+  fs::remove_all(out);
+  const int code = run_to_end({"run", scene, "-o", out.string(), "--set", "run.dt=0.05"}, out.string() + ".log");
+  const std::string log = slurp(out.string() + ".log");
+  EXPECT_EQ(code, 3) << log;
+  EXPECT_NE(log.find("unstable.h5"), std::string::npos) << log;
+  const polyfloe::run::Checkpoint c = polyfloe::run::read_checkpoint(out / "checkpoints" / "unstable.h5");
+  EXPECT_EQ(c.kind, "unstable");
+  EXPECT_GT(c.world.time, 0.0);
+  EXPECT_EQ(c.world.ids.size(), 2u);
+  // It is not a restart point.
+  const int again = run_to_end({"run", scene, "--restart", (out / "checkpoints" / "unstable.h5").string()},
+                               out.string() + ".log");
+  EXPECT_EQ(again, 2);
+  EXPECT_NE(slurp(out.string() + ".log").find("for inspection"), std::string::npos);
+  fs::remove_all(out);
+  fs::remove(out.string() + ".log");
+}
