@@ -101,23 +101,47 @@ void check_stability(const dynamics::World& w, double dt, double reference_speed
   // Runaway: far faster than anything the forcing or the impacts can produce.
   const double speed_limit = std::max(50.0, 20.0 * reference_speed);
   std::ostringstream why;
-  for (std::size_t i = 0; i < w.size(); ++i) {
-    const bool dynamic = w.motion(static_cast<int>(i)) == dynamics::Motion::dynamic;
-    const bool finite = std::isfinite(pos[i].x()) && std::isfinite(pos[i].y()) && std::isfinite(vel[i].x()) &&
-                        std::isfinite(vel[i].y()) && std::isfinite(om[i]) && std::isfinite(w.yaws()[i]);
-    const double speed = finite ? vel[i].norm() + std::abs(om[i]) * w.shape(static_cast<int>(i)).circumradius() : 0.0;
-    if (!finite) {
-      why << "body " << w.id(static_cast<int>(i)) << " has a non-finite state (NaN or Inf)";
-    } else if (dynamic && speed > speed_limit) {  // kinematic bodies move as the scene prescribes
-      why << "body " << w.id(static_cast<int>(i)) << " moves at " << speed << " m/s (limit " << speed_limit
-          << " m/s = max(50, 20 x reference speed))";
-    } else {
-      continue;
-    }
+  auto advice = [&] {
     why << " at t = " << w.time() << " s (step " << w.step_count() << "). The time step dt = " << dt
         << " s is probably too large for the contact stiffness: set run.dt to " << 0.25 * dt
         << " or raise run.steps_per_contact (e.g. x4), or lower ice.youngs_modulus.";
     throw InstabilityError(why.str());
+  };
+  // Runaway energy: the kinetic energy of the dynamic bodies beyond what they would have all moving at 10 x the
+  // reference speed (an instability that grows in many bodies at once, before any one reaches the speed limit).
+  double energy = 0.0, mass = 0.0, worst = 0.0;
+  std::size_t worst_body = 0;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const int b = static_cast<int>(i);
+    const bool dynamic = w.motion(b) == dynamics::Motion::dynamic;
+    const bool finite = std::isfinite(pos[i].x()) && std::isfinite(pos[i].y()) && std::isfinite(vel[i].x()) &&
+                        std::isfinite(vel[i].y()) && std::isfinite(om[i]) && std::isfinite(w.yaws()[i]);
+    const double speed = finite ? vel[i].norm() + std::abs(om[i]) * w.shape(b).circumradius() : 0.0;
+    if (!finite) {
+      why << "body " << w.id(b) << " has a non-finite state (NaN or Inf)";
+    } else if (dynamic && speed > speed_limit) {  // kinematic bodies move as the scene prescribes
+      why << "body " << w.id(b) << " moves at " << speed << " m/s (limit " << speed_limit
+          << " m/s = max(50, 20 x reference speed))";
+    } else {
+      if (dynamic) {
+        const double e = 0.5 * w.mass(b) * vel[i].squaredNorm() + 0.5 * w.inertia(b) * om[i] * om[i];
+        energy += e;
+        mass += w.mass(b);
+        if (e > worst) {
+          worst = e;
+          worst_body = i;
+        }
+      }
+      continue;
+    }
+    advice();
+  }
+  const double energy_limit = 0.5 * mass * 100.0 * std::max(1.0, reference_speed) * std::max(1.0, reference_speed);
+  if (energy > energy_limit) {
+    why << "the kinetic energy of the ice, " << energy << " J, exceeds " << energy_limit
+        << " J (every floe at 10 x the reference speed; the most energetic is body " << w.id(static_cast<int>(worst_body))
+        << " with " << worst << " J): runaway energy";
+    advice();
   }
   for (const dynamics::ContactRecord& c : w.contacts()) {
     const double limit = 0.5 * std::min(w.shape(c.a).equivalent_radius(), w.shape(c.b).equivalent_radius());

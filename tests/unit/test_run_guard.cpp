@@ -1,0 +1,126 @@
+// The run guard (run/simulation.h check_stability), case by case against hand-built states: a non-finite state, a
+// runaway body, runaway energy spread over many bodies (none fast enough for the per-body limit), and the messages
+// naming the body, the time and the step to try; and a World's state restored into a World built the same way
+// continues bit for bit, while a state for other bodies is refused.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "dynamics/world.h"
+#include "forcing/drift.h"
+#include "run/simulation.h"
+
+using namespace polyfloe;
+using geometry::Vec2;
+
+namespace {
+
+dynamics::World floes(int n, const Vec2& velocity) {
+  dynamics::WorldSettings ws;
+  ws.drift = forcing::DriftSettings::none();
+  dynamics::World w(ws);
+  const auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
+  for (int i = 0; i < n; ++i)
+    w.add_body({.id = static_cast<dynamics::BodyId>(100 + i), .shape = sq, .position = {20.0 * i, 0.0}, .velocity = velocity});
+  return w;
+}
+
+std::string guard_message(const dynamics::World& w, double dt, double v_ref) {
+  try {
+    run::check_stability(w, dt, v_ref);
+  } catch (const run::InstabilityError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+}  // namespace
+
+TEST(RunGuard, QuietStatePasses) {
+  EXPECT_EQ(guard_message(floes(50, {2.0, 0.0}), 1e-3, 1.0), "");
+}
+
+TEST(RunGuard, NonFiniteStateNamesTheBodyTimeAndStep) {
+  dynamics::World w = floes(3, {1.0, 0.0});
+  w.set_velocity(1, {std::numeric_limits<double>::quiet_NaN(), 0.0}, 0.0);
+  w.set_time(12.5, 4000);
+  const std::string m = guard_message(w, 1e-3, 1.0);
+  EXPECT_NE(m.find("body 101 has a non-finite state"), std::string::npos) << m;
+  EXPECT_NE(m.find("t = 12.5 s"), std::string::npos) << m;
+  EXPECT_NE(m.find("set run.dt to 0.00025"), std::string::npos) << m;
+}
+
+TEST(RunGuard, RunawayBody) {
+  dynamics::World w = floes(3, {1.0, 0.0});
+  w.set_velocity(2, {60.0, 0.0}, 0.0);  // limit max(50, 20 x 1 m/s)
+  const std::string m = guard_message(w, 1e-3, 1.0);
+  EXPECT_NE(m.find("body 102 moves at 60 m/s"), std::string::npos) << m;
+}
+
+TEST(RunGuard, RunawayEnergyInManyBodies) {
+  // 40 floes at 12 m/s: none near the per-body limit of 50 m/s, but together more kinetic energy than all of them
+  // at 10 x the reference speed of 1 m/s.
+  dynamics::World w = floes(40, {12.0, 0.0});
+  w.set_velocity(7, {12.0, 5.0}, 0.0);  // the most energetic one
+  const std::string m = guard_message(w, 1e-3, 1.0);
+  EXPECT_NE(m.find("runaway energy"), std::string::npos) << m;
+  EXPECT_NE(m.find("the most energetic is body 107"), std::string::npos) << m;
+  // At 9 m/s they are below the bound.
+  EXPECT_EQ(guard_message(floes(40, {9.0, 0.0}), 1e-3, 1.0), "");
+  // The bound scales with the reference speed.
+  EXPECT_EQ(guard_message(floes(40, {12.0, 0.0}), 1e-3, 2.0), "");
+}
+
+TEST(WorldState, RestoredWorldContinuesBitForBit) {
+  // Two floes collide with friction: a state taken during the contact (spring history, forces) and restored into
+  // a freshly built world must continue exactly as the original.
+  auto build = [] {
+    dynamics::WorldSettings ws;
+    ws.contact.friction = 0.5;
+    dynamics::World w(ws);
+    const auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
+    w.add_body({.id = 1, .shape = sq, .position = {0.0, 0.0}, .velocity = {1.0, 0.3}, .angular_velocity = 0.05});
+    w.add_body({.id = 2, .shape = sq, .position = {10.5, 2.0}, .velocity = {-1.0, 0.0}});
+    return w;
+  };
+  dynamics::World a = build();
+  const double dt = 2e-4;
+  for (int k = 0; k < 3000 && a.contact_cache().size() == 0; ++k) a.step(dt);
+  for (int k = 0; k < 50; ++k) a.step(dt);
+  ASSERT_GT(a.contact_cache().size(), 0u) << "the state must be taken during a contact";
+  dynamics::World b = build();
+  b.restore(a.state());
+  for (int k = 0; k < 2000; ++k) {
+    a.step(dt);
+    b.step(dt);
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(std::memcmp(&a.positions()[i], &b.positions()[i], sizeof(Vec2)), 0);
+    EXPECT_EQ(std::memcmp(&a.velocities()[i], &b.velocities()[i], sizeof(Vec2)), 0);
+    EXPECT_EQ(a.angular_velocities()[i], b.angular_velocities()[i]);
+  }
+  EXPECT_EQ(a.time(), b.time());
+  EXPECT_EQ(a.step_count(), b.step_count());
+}
+
+TEST(WorldState, StateOfOtherBodiesIsRefused) {
+  dynamics::World a = floes(3, {1.0, 0.0});
+  dynamics::World fewer = floes(2, {1.0, 0.0});
+  EXPECT_THROW(fewer.restore(a.state()), std::invalid_argument);
+  dynamics::WorldState s = a.state();
+  s.ids[1] = 999;
+  try {
+    a.restore(s);
+    FAIL() << "other ids must be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("id 999"), std::string::npos) << e.what();
+  }
+  s = a.state();
+  s.velocity[0] = {std::numeric_limits<double>::infinity(), 0.0};
+  EXPECT_THROW(a.restore(s), std::invalid_argument);
+  s = a.state();
+  s.yaw.pop_back();
+  EXPECT_THROW(a.restore(s), std::invalid_argument);
+}
