@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -112,6 +114,24 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
+// Why `dir` cannot be used as the output folder (empty if it can): it, or the nearest folder above it that exists,
+// must be a folder this process may write into. Checked before anything is created.
+std::string unwritable_reason(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path p = fs::absolute(dir, ec);
+  if (ec) return ec.message();
+  while (!fs::exists(p, ec)) {
+    if (!p.has_parent_path() || p.parent_path() == p) return "no existing folder above it";
+    p = p.parent_path();
+  }
+  if (!fs::is_directory(p, ec)) return p.string() + " is not a folder";
+  if (access(p.c_str(), W_OK | X_OK) != 0)
+    return (p == fs::absolute(dir) ? std::string("it is") : p.string() + " is") + " not writable (" +
+           std::strerror(errno) + ")";
+  return {};
+}
+
 int check(const scene::Scene& sc, const dynamics::World& world, const scene::FieldStatistics& field) {
   const double dt = scene::time_step(sc, world);
   std::cout << scene::resolved_yaml(sc);
@@ -206,6 +226,9 @@ int main(int argc, char** argv) {
         }
       }
     }
+    if (const std::string why = unwritable_reason(opt.output_dir); !why.empty())
+      throw scene::SceneError("output folder " + opt.output_dir.string() + " cannot be written: " + why +
+                              "; choose another with -o DIR");
     sim.emplace(sc, std::move(*world), opt, std::move(restart), restart_file);
     if (!restart_file.empty())
       std::cerr << "polyfloe: restarting from " << restart_file.string() << " (t = " << sim->world().time()
