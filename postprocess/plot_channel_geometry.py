@@ -52,7 +52,7 @@ def main():
         return 1
     region = [float(x) for x in re.findall(r"-?[\d.e+]+", resolved_block(resolved, "floe_field").get("region", ""))]
 
-    with h5py.File(os.path.join(a.run, "results.h5"), "r") as f:
+    with h5py.File(os.path.join(a.run, "results.h5"), "r", swmr=True) as f:
         polys = frame_polygons(f, 0)
         motion = f["/floes/motion"][:]
     fig, ax = plt.subplots(figsize=(11, 5.6))

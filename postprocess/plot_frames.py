@@ -40,7 +40,7 @@ def main():
     ap.add_argument("--vmax", type=float, default=None, help="top of the speed colour scale [m/s]")
     a = ap.parse_args()
     try:
-        f = h5py.File(a.results, "r")
+        f = h5py.File(a.results, "r", swmr=True)
     except OSError as e:
         sys.exit(f"plot_frames: cannot open {a.results}: {e}")
     with f:

@@ -83,7 +83,7 @@ def plot_flow(root, fams, out):
             curves = [[], [], []]
             t = None
             for path in paths:
-                with h5py.File(path, "r") as f:
+                with h5py.File(path, "r", swmr=True) as f:
                     tt = f["/time"][:]
                     ch = f["/diagnostics/channel"]
                     ys = [f["/diagnostics/mean_speed"][:], ch["strait_mean_speed"][:], ch["area_passed"][:] / 1e3]
@@ -119,7 +119,7 @@ def summarise(root, fams):
         for name, paths in members(root, fam):
             rows = []
             for path in paths:
-                with h5py.File(path, "r") as f:
+                with h5py.File(path, "r", swmr=True) as f:
                     t = f["/time"][:]
                     ch = f["/diagnostics/channel"]
                     motion = f["/floes/motion"][:]
@@ -165,7 +165,7 @@ def plot_fields(root, out):
     for name, paths in members(root, "exponent") or members(root, "concentration"):
         a = []
         for path in paths:
-            with h5py.File(path, "r") as f:
+            with h5py.File(path, "r", swmr=True) as f:
                 a.append(floe_shapes(f)[0])
         a = np.concatenate(a)
         d = np.sqrt(4 * a / np.pi)
@@ -177,7 +177,7 @@ def plot_fields(root, out):
     for name, paths in members(root, "corners"):
         c = []
         for path in paths:
-            with h5py.File(path, "r") as f:
+            with h5py.File(path, "r", swmr=True) as f:
                 a, p = floe_shapes(f)
             c.append(np.sqrt(4 * np.pi * a) / p)
         c = np.concatenate(c)
@@ -204,7 +204,7 @@ def plot_maps(root, fam, out, times=(170.0, 200.0)):
     grids = {}
     for name, paths in ms:
         for path in paths:
-            with h5py.File(path, "r") as f:
+            with h5py.File(path, "r", swmr=True) as f:
                 if "/diagnostics/velocity_grid" in f:
                     grids[name] = path
                     break
@@ -213,7 +213,7 @@ def plot_maps(root, fam, out, times=(170.0, 200.0)):
     pc = None
     for r, (name, paths) in enumerate(ms):
         for c, want in enumerate(times):
-            with h5py.File(paths[0], "r") as f:
+            with h5py.File(paths[0], "r", swmr=True) as f:
                 t = f["/time"][:]
                 motion = f["/floes/motion"][:]
                 k = int(np.argmin(np.abs(t - want)))
@@ -229,7 +229,7 @@ def plot_maps(root, fam, out, times=(170.0, 200.0)):
             ax.set_title(f"{name} ({os.path.basename(os.path.dirname(paths[0]))}): floes, t = {t[k]:.0f} s",
                          fontsize=8)
             if name in grids:
-                with h5py.File(grids[name], "r") as f:
+                with h5py.File(grids[name], "r", swmr=True) as f:
                     tg = f["/time"][:]
                     kg = int(np.argmin(np.abs(tg - want)))
                     g = f["/diagnostics/velocity_grid"]

@@ -33,7 +33,7 @@ from plot_frames import frame_polygons  # noqa: E402
 
 def load(run):
     path = os.path.join(run, "results.h5")
-    with h5py.File(path, "r") as f:
+    with h5py.File(path, "r", swmr=True) as f:
         t = f["/time"][:]
         ids = f["/floes/id"][:]
         motion = f["/floes/motion"][:]

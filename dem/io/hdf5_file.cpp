@@ -499,16 +499,30 @@ File::File(const fs::path& path, Mode mode) : path_(path) {
   const std::string name = path.string();
   ErrorScope scope(name);
   hid_t id = -1;
+  // New files use the latest format, which single-writer/multiple-reader (SWMR) writing needs (start_swmr_write).
+  Handle fapl = scratch(scope, H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
+  if (mode == Mode::truncate || mode == Mode::exclusive)
+    scope.check(H5Pset_libver_bounds(fapl.id(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "H5Pset_libver_bounds");
   switch (mode) {
-    case Mode::truncate: id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); break;
-    case Mode::exclusive: id = H5Fcreate(name.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT); break;
-    case Mode::read_only: id = H5Fopen(name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT); break;
+    case Mode::truncate: id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id()); break;
+    case Mode::exclusive: id = H5Fcreate(name.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.id()); break;
+    case Mode::read_only:
+      id = H5Fopen(name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      // A file whose SWMR writer is still running, or was killed, is marked as open for writing: it is read as a
+      // SWMR reader, which sees it as of the writer's last flush (always consistent).
+      if (id < 0) id = H5Fopen(name.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
+      break;
     case Mode::read_write: id = H5Fopen(name.c_str(), H5F_ACC_RDWR, H5P_DEFAULT); break;
   }
   file_ = Handle(scope.check(id, mode == Mode::truncate || mode == Mode::exclusive ? "H5Fcreate" : "H5Fopen"),
                  name);
   const hid_t root = scope.check(H5Gopen2(file_.id(), "/", H5P_DEFAULT), "H5Gopen2");
   root_ = Group(Handle(root, name + ":/"), "/", path_);
+}
+
+void File::start_swmr_write() {
+  ErrorScope scope(path_.string());
+  scope.check(H5Fstart_swmr_write(file_.id()), "H5Fstart_swmr_write");
 }
 
 void File::flush() {

@@ -215,6 +215,11 @@ class File {
 
   // Writes everything buffered (data and metadata) to the file, so it reads back as it is now.
   void flush();
+  // Switches a new file to single-writer/multiple-reader mode: from now on no object or attribute may be created,
+  // only series appended, and HDF5 orders its metadata writes so that the file on disk is consistent at every
+  // moment (a kill in the middle of a flush leaves the previous flush readable; readers, this class's read_only
+  // mode among them, may open it while it is written).
+  void start_swmr_write();
   // Closes the file (after this only destruction is valid). Throws on failure.
   void close();
 

@@ -203,7 +203,16 @@ struct Hdf5Writer::Impl {
     file.flush();
   }
 
+  bool swmr = false;
+  void start_swmr() {
+    if (swmr) return;
+    file.flush();
+    file.start_swmr_write();
+    swmr = true;
+  }
+
   void write_frame(const dynamics::World& world, std::span<const double> extra_values) {
+    start_swmr();  // every object exists by the first frame (the driver's series too)
     if (extra_values.size() != extra.size())
       throw IoError(file.path().string() + ": " + std::to_string(extra_values.size()) + " extra values for " +
                     std::to_string(extra.size()) + " extra series");
@@ -353,6 +362,7 @@ void Hdf5Writer::adopt_frames(const std::filesystem::path& previous, int frames)
   impl_->file.flush();
 }
 
+void Hdf5Writer::start_swmr() { impl_->start_swmr(); }
 void Hdf5Writer::flush() { impl_->file.flush(); }
 int Hdf5Writer::frames() const { return impl_->frames; }
 const std::filesystem::path& Hdf5Writer::path() const { return impl_->file.path(); }

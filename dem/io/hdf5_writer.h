@@ -16,8 +16,10 @@
 //          max_tensile_stress [T], max_shear_stress [T] [Pa], face_intact [T,F] uint8, point_intact [T,P] uint8
 //
 // Every dataset carries a "units" attribute; the root carries scene_path, scene_text, code_version, overrides,
-// dt, water_density and created_by = "PolyFloe". The file is flushed after each frame, so a run killed between
-// frames leaves every written frame readable. The set of bodies must not change during the run.
+// dt, water_density and created_by = "PolyFloe". From the first frame on the file is in HDF5's single-writer/
+// multiple-reader mode and flushed after each frame: the file on disk is consistent at every moment, so a run
+// killed at any instant leaves every flushed frame readable (by SWMR readers: h5py.File(path, "r", swmr=True);
+// io::hdf5::File opens such files itself). The set of bodies must not change during the run.
 #pragma once
 
 #include <filesystem>
@@ -63,6 +65,9 @@ class Hdf5Writer {
   // Throws IoError if the bodies differ from the first frame's or `extra` has the wrong length.
   void write_frame(const dynamics::World& world, std::span<const double> extra = {});
   void flush();
+  // Switches the file to single-writer/multiple-reader mode (see above) once every dataset exists; from then on
+  // the file is consistent on disk at every moment. Done by the first write_frame() if not called before.
+  void start_swmr();
   int frames() const;
   // Continues a run: copies frames 0..frames-1 of every series (extendible dataset) from `previous` (the file of
   // the interrupted run, same layout) into this newly created file, so that the next write_frame() writes frame

@@ -337,12 +337,14 @@ RunSummary Simulation::run() {
     next_frame = c.next_frame;
     if (h5) {
       h5->adopt_frames(interrupted, frames);
-      fs::remove(interrupted);
+      h5->start_swmr();         // consistent on disk from here on ...
+      fs::remove(interrupted);  // ... so the interrupted run's file can go
     }
     if (vtk) vtk->resume(frame_times, world_.bonds() != nullptr);
     if (velocity_grid) velocity_grid->resume(*c.next_sample, frame_times);
     if (channel) channel->restore(*c.channel);
   } else {
+    if (h5) h5->start_swmr();
     world_.compute_forces(0.0);
     write_frame();
   }
