@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs what PolyFloe needs from Debian 12's archive. Idempotent: when everything is present it only checks
 # (well under a second). Run as root, or as a user with sudo.
+#
+#   bash scripts/setup.sh          # build, test, run, plot
+#   bash scripts/setup.sh fuzz     # the same plus clang and its libFuzzer/sanitizer runtimes (scripts/fuzz.sh)
 set -euo pipefail
 
 PACKAGES=(
@@ -9,6 +12,15 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
 )
+# Optional groups, named on the command line.
+FUZZ_PACKAGES=(clang libclang-rt-dev)
+
+for group in "$@"; do
+  case "$group" in
+    fuzz) PACKAGES+=("${FUZZ_PACKAGES[@]}") ;;
+    *) echo "setup: unknown group '$group' (known: fuzz)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -55,7 +55,8 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
 
   int j_near = 0;  // B's vertex nearest A along the axis: clipping starts with the edges around it
   // Quick rejection along the line between the vertex means: most broad-phase candidates that do not touch are
-  // separated along it (touching counts as separated, as below).
+  // separated along it (touching counts as separated, as below). When the means coincide there is no such line
+  // (every projection is 0): concentric polygons always overlap.
   {
     Vec2 ma{0.0, 0.0}, mb{0.0, 0.0};
     for (int i = 0; i < na; ++i) ma += a[i];
@@ -70,7 +71,7 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
         j_near = j;
       }
     }
-    if (hi_a <= lo_b) return false;
+    if (hi_a <= lo_b && axis != Vec2::Zero()) return false;
   }
 
   ClipPolygon buf[2];
@@ -141,18 +142,28 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   }
   if (!(a2 > 0.0)) return false;  // touching along an edge or at a vertex: no overlap
   out.area = 0.5 * a2;
-  const Vec2 g = p0 + c / (3.0 * a2);  // centroid, relative to `origin`
-  out.point = origin + g;
   // chord_a = -chord_b for a closed polygon; averaging keeps the result antisymmetric in A and B.
   const Vec2 chord = 0.5 * (chord_a - chord_b);
   const double len = chord.norm();
-  double scale = 0.0;
-  for (int k = 0; k < n; ++k) scale = std::max(scale, (cur->p[k] - p0).lpNorm<Eigen::Infinity>());
+  Vec2 lo = p0, hi = p0;  // bounding box of the overlap polygon
+  for (int k = 1; k < n; ++k) {
+    lo = lo.cwiseMin(cur->p[k]);
+    hi = hi.cwiseMax(cur->p[k]);
+  }
+  const double scale = std::max((hi - p0).maxCoeff(), (p0 - lo).maxCoeff());  // max |p_k - p0|_inf
+  // Centroid, relative to `origin`. Kept in the overlap's bounding box, where it lies in exact arithmetic: for a
+  // sliver whose area is round-off (faces flush to within epsilon) the quotient can land metres away.
+  const Vec2 g = (p0 + c / (3.0 * a2)).cwiseMax(lo).cwiseMin(hi);
+  out.point = origin + g;
   out.moment = 0.0;
   out.ga = out.gb = Vec2{0.0, 0.0};
   out.ha = out.hb = 0.0;
   if (!(len > 1e-9 * scale)) {
-    // One polygon inside the other: no boundary crossing to define a chord.
+    // One polygon inside the other: no boundary crossing to define a chord. Or B, far smaller than its distance
+    // from a[0] (by 1/epsilon), collapsed relative to `origin` to a point that cut nothing: no overlap.
+    bool b_point = true;
+    for (int j = 1; j < nb && b_point; ++j) b_point = (b[j] - origin) == (b[0] - origin);
+    if (b_point) return false;
     out.chord = 0.0;
     least_penetration(a, b, out);
     return true;

@@ -57,6 +57,13 @@ std::string convexity_error(std::span<const Vec2> v) {
   double scale = 0.0;
   for (std::size_t i = 1; i < n; ++i) scale = std::max(scale, (v[i] - v[0]).lpNorm<Eigen::Infinity>());
   if (scale <= 0.0) return "all vertices coincide";
+  // The polar moment grows as size^4: outside this range it (or the area, or the centroid's sums) would overflow or
+  // underflow to zero, which the validation below cannot see.
+  if (scale < kMinPolygonSize || scale > kMaxPolygonSize) {
+    msg << "the polygon's size " << scale << " m is outside the range [" << kMinPolygonSize << ", " << kMaxPolygonSize
+        << "] m";
+    return msg.str();
+  }
   const double len_tol = 1e-9 * scale;
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t k = i + 1; k < n; ++k) {

@@ -1,8 +1,8 @@
 // Convex polygons and the prisms made by extruding them (a floe of thickness h).
 //
 // A ConvexPolygon is validated once and is immutable afterwards: at least 3 vertices, all finite, no repeated
-// points, counter-clockwise, strictly convex. Its vertices are stored in the body frame, with the area centroid at
-// the origin, so a body's position is its centre of mass.
+// points, counter-clockwise, strictly convex, of a size in [1e-60, 1e60] m. Its vertices are stored in the body
+// frame, with the area centroid at the origin, so a body's position is its centre of mass.
 #pragma once
 
 #include <span>
@@ -33,7 +33,11 @@ PolygonProperties polygon_properties(std::span<const Vec2> v);
 double circularity(double area, double perimeter);
 
 // Returns an empty string if `v` is a valid strictly convex counter-clockwise polygon, else a message that says
-// what is wrong (and which vertex). Tolerances are relative to the polygon's size.
+// what is wrong (and which vertex). Tolerances are relative to the polygon's size. The size (the largest coordinate
+// difference from the first vertex) must lie in [kMinPolygonSize, kMaxPolygonSize], where the area and the polar
+// moment (~ size^4) are normal, finite doubles.
+inline constexpr double kMinPolygonSize = 1e-60;  // [m]
+inline constexpr double kMaxPolygonSize = 1e60;   // [m]
 std::string convexity_error(std::span<const Vec2> v);
 
 class ConvexPolygon {

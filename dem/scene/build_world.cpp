@@ -107,12 +107,25 @@ double bond_time_step(const dynamics::World& world) {
 }
 
 double time_step(const Scene& scene, const dynamics::World& world) {
-  if (scene.time.dt) return *scene.time.dt;
-  const double duration = world.shortest_contact_duration(reference_speed(scene));  // [s]
-  if (!(duration > 0.0) || !std::isfinite(duration))
-    throw SceneError(scene.source_path + ": cannot choose an automatic time step (shortest contact duration " +
-                     std::to_string(duration) + " s); set run.dt");
-  return std::min(duration / scene.time.steps_per_contact, bond_time_step(world));
+  double dt = 0.0;
+  if (scene.time.dt) {
+    dt = *scene.time.dt;
+  } else {
+    const double duration = world.shortest_contact_duration(reference_speed(scene));  // [s]
+    if (!(duration > 0.0) || !std::isfinite(duration))
+      throw SceneError(scene.source_path + ": cannot choose an automatic time step (shortest contact duration " +
+                       std::to_string(duration) + " s); set run.dt");
+    dt = std::min(duration / scene.time.steps_per_contact, bond_time_step(world));
+  }
+  // The step counter is an integer; beyond this a run could not finish anyway (a microsecond per step is 11 days).
+  if (const double steps = std::ceil(scene.time.duration / dt); !(steps <= kMaxSteps)) {
+    std::ostringstream msg;
+    msg << scene.source_path << ": run.duration " << scene.time.duration << " s at the time step " << dt << " s"
+        << (scene.time.dt ? " (run.dt)" : " (automatic)") << " is " << steps << " steps, more than the " << kMaxSteps
+        << " a run may take; shorten run.duration" << (scene.time.dt ? " or raise run.dt" : "");
+    throw SceneError(msg.str());
+  }
+  return dt;
 }
 
 dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {

@@ -248,6 +248,13 @@ std::vector<double> floe_sizes(const FloeFieldSpec& spec, FieldRandom& rng) {
     const double x = power_law_quantile(rng.uniform(), spec.size_min, spec.size_max, spec.exponent);
     const double a = circle_area(x);
     if (sum + a < target) {
+      if (areas.size() == kMaxFieldFloes) {
+        std::ostringstream msg;
+        msg << prefix(spec) << "floe_field: the target ice area " << target << " m^2 (concentration x region area) "
+            << "needs more than " << kMaxFieldFloes << " floes of these sizes; shrink floe_field.region or raise "
+            << "floe_field.size";
+        throw SceneError(msg.str());
+      }
       areas.push_back(a);
       sum += a;
       continue;

@@ -16,6 +16,7 @@
 // standard-library distributions.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <random>
 #include <span>
@@ -46,7 +47,9 @@ double power_law_quantile(double u, double a, double b, double alpha);
 // sum(pi x^2 / 4) reaches concentration x region area. The last draw is replaced by the floe that makes the total
 // exact (size sqrt(4 r / pi) for the remaining area r); if that would be smaller than size_min, r is added to the
 // smallest floe drawn instead (when it stays <= size_max), else it is dropped (the total then falls short by less
-// than one smallest floe). Throws SceneError if the target area is below one floe of size_min.
+// than one smallest floe). Throws SceneError if the target area is below one floe of size_min, or needs more than
+// kMaxFieldFloes floes (a region given in the wrong unit would otherwise exhaust the memory).
+inline constexpr std::size_t kMaxFieldFloes = 10'000'000;
 std::vector<double> floe_sizes(const FloeFieldSpec& spec, FieldRandom& rng);
 
 // A random strictly convex counter-clockwise polygon with `corners` vertices on an ellipse of semi-axis ratio

@@ -179,6 +179,8 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report = 
 // The reference impact speed the scene uses (its own, or the automatic one) [m/s].
 double reference_speed(const Scene& scene);
 // The time step the scene uses for this world: fixed, or shortest contact duration / steps_per_contact [s].
+// Throws SceneError when run.duration would take more than kMaxSteps steps.
+inline constexpr double kMaxSteps = 1e12;
 double time_step(const Scene& scene, const dynamics::World& world);
 
 }  // namespace polyfloe::scene

@@ -272,7 +272,7 @@ IceSheetSpec read_ice_sheet(MapReader m) {
     SheetBondSpec bond;
     b->number("tensile_strength", bond.tensile_strength, positive("Pa"));
     b->number("shear_strength", bond.shear_strength, positive("Pa"));
-    b->number("friction_angle", bond.friction_angle, Range{0.0, 0.5 * std::numbers::pi, true, false, "rad"});
+    b->number("friction_angle", bond.friction_angle, Range{0.0, 0.5 * std::numbers::pi, false, true, "rad"});
     b->integer("points_per_face", bond.points_per_face, 2, 64);
     b->number("damping_ratio", bond.damping_ratio, closed(0.0, 10.0, "-"));
     b->finish();

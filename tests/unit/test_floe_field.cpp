@@ -164,6 +164,23 @@ TEST(FloeSizes, TooSmallARegionIsAnError) {
   EXPECT_THROW(floe_sizes(s, r), SceneError);
 }
 
+// Found while bounding the fuzzer's work (tests/fuzz/fuzz_scene_parser.cpp): a region given in the wrong unit
+// (or one whose area overflows to inf) drew sizes until the memory ran out; now it is an error naming the keys.
+TEST(FloeSizes, TooManyFloesIsAnError) {
+  FloeFieldSpec s = small_spec(0.5);
+  s.region_min = {-1e300, -1e300};  // the area overflows to inf; [0, 0, 1e6, 1e6] (mm taken for m) is as bad
+  s.region_max = {1e300, 1e300};
+  FieldRandom r(1);
+  try {
+    (void)floe_sizes(s, r);
+    ADD_FAILURE() << "accepted";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("needs more than 10000000 floes"), std::string::npos) << m;
+    EXPECT_NE(m.find("shrink floe_field.region"), std::string::npos) << m;
+  }
+}
+
 // --- shapes ---
 
 TEST(FloePolygon, ConvexCounterClockwiseExactAreaCentred) {

@@ -86,3 +86,26 @@ TEST(Polygon, RejectsBadInput) {
   }
   rejects(star, "winds");
 }
+
+// Found by fuzzing (tests/fuzz/fuzz_polygon.cpp): polygons so small or so large that the polar moment (~ size^4)
+// underflowed to 0 or overflowed to inf were accepted (or refused as "collinear"); the size range is now checked.
+TEST(Polygon, RejectsSizesOutsideTheSupportedRange) {
+  auto square = [](double a) { return std::vector<Vec2>{{0, 0}, {a, 0}, {a, a}, {0, a}}; };
+  for (double a : {1e-160, 1e-61, 1e61, 1e100, 1e160}) {
+    SCOPED_TRACE(a);
+    try {
+      (void)ConvexPolygon::from_vertices(square(a));
+      ADD_FAILURE() << "accepted";
+    } catch (const GeometryError& e) {
+      EXPECT_NE(std::string(e.what()).find("outside the range [1e-60, 1e+60] m"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW((void)ConvexPolygon::rectangle(1e-100, 1e-100), GeometryError);
+  for (double a : {1e-55, 1e-6, 1e6, 1e55}) {  // inside the range: finite, positive properties
+    SCOPED_TRACE(a);
+    const ConvexPolygon p = ConvexPolygon::from_vertices(square(a));
+    EXPECT_GT(p.polar_moment(), 0.0);
+    EXPECT_TRUE(std::isfinite(p.polar_moment()));
+    EXPECT_NEAR(p.area(), a * a, 1e-12 * a * a);
+  }
+}

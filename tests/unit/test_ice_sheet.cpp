@@ -211,5 +211,21 @@ TEST(IceSheetScene, BlockKeysRoundTripAndErrors) {
   EXPECT_TRUE(contains(m, "(ice_sheet element") && contains(m, "overlaps c.yaml:3:5 (floes.0) initially")) << m;
 }
 
+// Found by fuzzing (tests/fuzz/fuzz_scene_parser.cpp): the reader allowed friction_angle in (0, pi/2] instead of the
+// documented [0, pi/2), so the default 0, written out by resolved_yaml(), did not read back, and pi/2 passed the
+// reader to fail later in the bond model without a line number.
+TEST(IceSheetScene, FrictionAngleRangeIncludesZeroExcludesRightAngle) {
+  const Scene s = parse_scene("ice_sheet: {bonds: {friction_angle: 0}}\n", "f.yaml", {});
+  ASSERT_TRUE(s.ice_sheet->bonds.has_value());
+  EXPECT_EQ(s.ice_sheet->bonds->friction_angle, 0.0);
+  const Scene defaults = parse_scene("ice_sheet: {bonds: {}}\n", "d.yaml", {});
+  const Scene back = parse_scene(resolved_yaml(defaults), "r.yaml", {});
+  ASSERT_TRUE(back.ice_sheet->bonds.has_value());
+  EXPECT_EQ(back.ice_sheet->bonds->friction_angle, 0.0);
+  const std::string m = parse_error("ice_sheet: {bonds: {friction_angle: 1.5707963267948966}}\n");
+  EXPECT_TRUE(contains(m, "t.yaml:1:37: key 'ice_sheet.bonds.friction_angle'")) << m;
+  EXPECT_TRUE(contains(m, "outside the allowed range [0, 1.5707963267948966) [rad]")) << m;
+}
+
 }  // namespace
 }  // namespace polyfloe::scene

@@ -228,3 +228,54 @@ TEST(NarrowPhase, ContainmentFallsBack) {
   EXPECT_NEAR(c.normal.x(), 1.0, 1e-12);
   EXPECT_NEAR(c.depth, 10.0, 1e-9);
 }
+
+// Found by fuzzing (tests/fuzz/fuzz_polygon.cpp): the quick rejection along the line between the vertex means
+// rejected every pair whose means coincide, so a polygon on itself, or one centred inside another, had no contact.
+TEST(NarrowPhase, ConcentricPolygonsOverlap) {
+  const std::vector<Vec2> sq = {{-5, -5}, {5, -5}, {5, 5}, {-5, 5}};
+  PlanarContact c;
+  ASSERT_TRUE(contact::planar_overlap(sq, sq, c, true));
+  EXPECT_NEAR(c.area, 100.0, 1e-9);
+  EXPECT_EQ(c.chord, 0.0);           // containment fallback
+  EXPECT_NEAR(c.depth, 10.0, 1e-9);  // least penetration: the full width
+  const std::vector<Vec2> diamond = {{0, -2}, {2, 0}, {0, 2}, {-2, 0}};  // same vertex mean, inside sq
+  ASSERT_TRUE(contact::planar_overlap(sq, diamond, c));
+  EXPECT_NEAR(c.area, 8.0, 1e-12);
+  ASSERT_TRUE(contact::planar_overlap(diamond, sq, c));
+  EXPECT_NEAR(c.area, 8.0, 1e-12);
+}
+
+// Found by fuzzing: a B smaller than the round-off of its coordinates relative to A's first vertex collapses there
+// to a point that cuts nothing, and all of A was reported as the overlap.
+TEST(NarrowPhase, PolygonBelowRoundOffIsNoLargerOverlapThanItself) {
+  const std::vector<Vec2> sq = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  const double s = 1e-20;  // relative to sq's first vertex, (1 +- 1e-20) rounds to 1
+  const std::vector<Vec2> tiny = {{0, 0}, {s, 0}, {0, s}};
+  PlanarContact c;
+  const bool hit = contact::planar_overlap(sq, tiny, c);
+  EXPECT_TRUE(!hit || c.area <= 0.5 * s * s) << c.area;
+  // The other way round the tiny one is the frame and is resolved: the overlap is all of it.
+  ASSERT_TRUE(contact::planar_overlap(tiny, sq, c));
+  EXPECT_NEAR(c.area, 0.5 * s * s, 1e-12 * s * s);
+}
+
+// Found by fuzzing: two unit squares flush along a face, turned by ~1e-9 rad, overlap in a sliver whose area is
+// round-off; its centroid came out 37 m from both. It is kept in the overlap's bounding box now.
+TEST(NarrowPhase, RoundOffSliverCentroidStaysInTheOverlap) {
+  const std::vector<Vec2> a = {{-0x1.fffffff768fa3p-2, -0x1.000000044b83p-1},
+                               {0x1.000000044b831p-1, -0x1.fffffff768fa1p-2},
+                               {0x1.fffffff768fa3p-2, 0x1.000000044b83p-1},
+                               {-0x1.000000044b831p-1, 0x1.fffffff768fa1p-2}};
+  const std::vector<Vec2> b = {{0x1.000000044b83p-1, -0x1.000000044b83p-1},
+                               {0x1.8000000225c1ap+0, -0x1.fffffff768fa1p-2},
+                               {0x1.7ffffffdda3eap+0, 0x1.000000044b83p-1},
+                               {0x1.fffffff768fa2p-2, 0x1.fffffff768fa1p-2}};
+  for (const bool swap : {false, true}) {
+    SCOPED_TRACE(swap);
+    PlanarContact c;
+    if (!contact::planar_overlap(swap ? b : a, swap ? a : b, c, true)) continue;  // no contact is as good
+    EXPECT_LE(c.area, 1e-14);
+    EXPECT_NEAR(c.point.x(), 0.5, 1e-8);
+    EXPECT_LE(std::abs(c.point.y()), 0.5 + 1e-8);
+  }
+}

@@ -617,6 +617,31 @@ TEST(BuildWorld, TwoFloes) {
   EXPECT_EQ(time_step(fixed, w), 1e-4);
 }
 
+// Found by fuzzing (tests/fuzz/regressions/fuzz_scene_parser/check-step-count-overflows-long-long.yaml): a run of
+// 1e300 s converted ceil(duration / dt) to a 64-bit integer (undefined behaviour; `check` printed a negative count).
+TEST(BuildWorld, MoreStepsThanARunMayTakeIsAnError) {
+  Scene s;
+  s.source_path = "long.yaml";
+  s.bodies = {square({0, 0})};
+  const dynamics::World w = build_world(s);
+  for (const double duration : {1e300, 1.1e9}) {
+    s.time.duration = duration;
+    s.time.dt = 1e-3;
+    SCOPED_TRACE(duration);
+    try {
+      (void)time_step(s, w);
+      ADD_FAILURE() << "accepted";
+    } catch (const SceneError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("long.yaml: run.duration"), std::string::npos) << m;
+      EXPECT_NE(m.find("more than the 1e+12 a run may take; shorten run.duration or raise run.dt"), std::string::npos)
+          << m;
+    }
+  }
+  s.time.duration = 1e8;  // 1e11 steps: allowed
+  EXPECT_EQ(time_step(s, w), 1e-3);
+}
+
 TEST(BuildWorld, ChannelSceneIdsWallsAndField) {
   const Scene s = read_scene(kSceneDir + "channel.yaml", {});
   const double v = forcing::free_drift_velocity(s.world.drift, s.ocean_field.velocity, s.wind_field.velocity).norm();
