@@ -10,8 +10,8 @@
 #   bash scripts/fuzz.sh --runs 1000 fuzz_polygon   # only the named targets
 #
 # The corpus grows in a work directory outside the source tree ($POLYFLOE_FUZZ_DIR, default a new directory under
-# ${TMPDIR:-/tmp}), seeded with dem/scenes/*.yaml (scene target) and the inputs saved under tests/fuzz/regressions/
-# <target>/ (inputs that once failed; every run replays them). Crashes, sanitizer reports, leaks, time-outs (an
+# ${TMPDIR:-/tmp}), seeded with dem/scenes/*.yaml and tests/bad_input/*.yaml (scene target) and the inputs saved
+# under tests/fuzz/regressions/<target>/ (inputs that once failed; every run replays them). Crashes, sanitizer reports, leaks, time-outs (an
 # input running over 10 s) and memory blow-ups (over 2 GB) are saved in <work>/artifacts/ and make the script exit
 # non-zero. Reproduce one with: build-fuzz/fuzz/<target> <artifact>. $POLYFLOE_FUZZ_FLAGS adds libFuzzer flags
 # (e.g. -seed=1).
@@ -47,7 +47,7 @@ echo "fuzz: built ${targets[*]} in $(( $(date +%s) - t0 )) s"
 
 WORK="${POLYFLOE_FUZZ_DIR:-$(mktemp -d "${TMPDIR:-/tmp}/polyfloe-fuzz.XXXXXX")}"
 mkdir -p "$WORK/artifacts" "$WORK/seeds/fuzz_scene_parser"
-cp dem/scenes/*.yaml "$WORK/seeds/fuzz_scene_parser/"
+cp dem/scenes/*.yaml tests/bad_input/*.yaml "$WORK/seeds/fuzz_scene_parser/"
 # A 64 MB quarantine (use-after-free detection window) instead of 256 MB keeps long runs well under the RSS limit.
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:quarantine_size_mb=64:${ASAN_OPTIONS:-}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"

@@ -5,6 +5,7 @@
 // Exit codes: 0 done, 2 bad input, 3 the run became unstable, 1 anything else.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cerrno>
 #include <cstdlib>
@@ -132,6 +133,36 @@ std::string unwritable_reason(const std::filesystem::path& dir) {
   return {};
 }
 
+// The lines removed from `was` ("  - ") and added in `now` ("  + "), in order: a longest-common-subsequence diff
+// (resolved scenes are a few hundred lines).
+std::string changed_lines(const std::string& was, const std::string& now) {
+  auto lines = [](const std::string& text) {
+    std::vector<std::string> v;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);) v.push_back(l);
+    return v;
+  };
+  const std::vector<std::string> a = lines(was), b = lines(now);
+  const std::size_t n = a.size(), m = b.size();
+  // common[i][j]: length of the longest common subsequence of a[i..] and b[j..].
+  std::vector<std::vector<int>> common(n + 1, std::vector<int>(m + 1, 0));
+  for (std::size_t i = n; i-- > 0;)
+    for (std::size_t j = m; j-- > 0;)
+      common[i][j] = a[i] == b[j] ? common[i + 1][j + 1] + 1 : std::max(common[i + 1][j], common[i][j + 1]);
+  std::ostringstream out;
+  std::size_t i = 0, j = 0;
+  while (i < n || j < m) {
+    if (i < n && j < m && a[i] == b[j]) {
+      ++i, ++j;
+    } else if (j == m || (i < n && common[i + 1][j] >= common[i][j + 1])) {
+      out << "  - " << a[i++] << "\n";
+    } else {
+      out << "  + " << b[j++] << "\n";
+    }
+  }
+  return out.str();
+}
+
 int check(const scene::Scene& sc, const dynamics::World& world, const scene::FieldStatistics& field) {
   const double dt = scene::time_step(sc, world);
   std::cout << scene::resolved_yaml(sc);
@@ -207,29 +238,23 @@ int main(int argc, char** argv) {
   try {
     std::optional<run::Checkpoint> restart;
     std::filesystem::path restart_file;
+    std::string scene_changes;  // what differs from the checkpointed run's resolved scene, as a line diff
     if (!args.restart.empty()) {
       restart_file = run::find_checkpoint(args.restart);
       restart = run::read_checkpoint(restart_file);
       const std::filesystem::path folder = restart_file.parent_path();
       if (args.output.empty() && folder.filename() == "checkpoints") opt.output_dir = folder.parent_path();
       const std::string now = scene::resolved_yaml(sc);
-      if (restart->scene_resolved != now) {
-        std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "
-                     "an uninterrupted run of either. Changed lines:\n";
-        std::istringstream was(restart->scene_resolved), is(now);
-        std::vector<std::string> a, b;
-        for (std::string l; std::getline(was, l);) a.push_back(l);
-        for (std::string l; std::getline(is, l);) b.push_back(l);
-        for (std::size_t k = 0; k < std::max(a.size(), b.size()); ++k) {
-          const std::string x = k < a.size() ? a[k] : "", y = k < b.size() ? b[k] : "";
-          if (x != y) std::cerr << "  - " << x << "\n  + " << y << "\n";
-        }
-      }
+      if (restart->scene_resolved != now) scene_changes = changed_lines(restart->scene_resolved, now);
     }
     if (const std::string why = unwritable_reason(opt.output_dir); !why.empty())
       throw scene::SceneError("output folder " + opt.output_dir.string() + " cannot be written: " + why +
                               "; choose another with -o DIR");
     sim.emplace(sc, std::move(*world), opt, std::move(restart), restart_file);
+    if (!scene_changes.empty())
+      std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "
+                   "an uninterrupted run of either. Changed lines:\n"
+                << scene_changes;
     if (!restart_file.empty())
       std::cerr << "polyfloe: restarting from " << restart_file.string() << " (t = " << sim->world().time()
                 << " s, step " << sim->world().step_count() << ")\n";

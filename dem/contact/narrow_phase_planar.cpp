@@ -159,11 +159,16 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   out.ga = out.gb = Vec2{0.0, 0.0};
   out.ha = out.hb = 0.0;
   if (!(len > 1e-9 * scale)) {
-    // One polygon inside the other: no boundary crossing to define a chord. Or B, far smaller than its distance
-    // from a[0] (by 1/epsilon), collapsed relative to `origin` to a point that cut nothing: no overlap.
-    bool b_point = true;
-    for (int j = 1; j < nb && b_point; ++j) b_point = (b[j] - origin) == (b[0] - origin);
-    if (b_point) return false;
+    // One polygon inside the other: no boundary crossing to define a chord. Or one of them, far smaller than its
+    // distance from `origin` (by 1/epsilon), collapsed there by round-off to a segment or a point that cut a sliver
+    // of round-off: no overlap.
+    auto collapsed = [&](std::span<const Vec2> v) {  // its area, from its coordinates relative to `origin`
+      const Vec2 t0 = v[0] - origin;
+      double twice_area = 0.0;
+      for (std::size_t k = 1; k + 1 < v.size(); ++k) twice_area += cross(v[k] - origin - t0, v[k + 1] - origin - t0);
+      return !(twice_area > 0.0);
+    };
+    if (collapsed(a) || collapsed(b)) return false;
     out.chord = 0.0;
     least_penetration(a, b, out);
     return true;

@@ -42,6 +42,7 @@ class ErrorScope {
   static herr_t on_error(hid_t stack, void* client) noexcept {
     auto* self = static_cast<ErrorScope*>(client);
     try {
+      self->messages_.clear();  // the latest failure's stack (a call retried in another mode fails twice)
       H5Ewalk2(stack, H5E_WALK_DOWNWARD, &ErrorScope::on_frame, &self->messages_);
     } catch (...) {
       // out of memory while formatting: the exception still follows, only less detailed

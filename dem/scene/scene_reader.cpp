@@ -13,7 +13,9 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <numbers>
+#include <iomanip>
 #include <sstream>
 #include <utility>
 
@@ -136,6 +138,8 @@ BodySpec read_body(MapReader m) {
         const double a = 2.0 * std::numbers::pi * i / sides;
         b.polygon.emplace_back(radius * std::cos(a), radius * std::sin(a));
       }
+      if (const std::string err = geometry::convexity_error(b.polygon); !err.empty())
+        ctx.fail(r.self(), "the regular polygon's outline is unusable: " + err);
     }
     r.finish();
   }
@@ -147,6 +151,10 @@ BodySpec read_body(MapReader m) {
       if (!fw || !fh) ctx.fail(r.self(), std::string("missing required key '") + (fw ? "height" : "width") + "'");
       const double hx = 0.5 * to_number(ctx, *fw, positive("m")), hy = 0.5 * to_number(ctx, *fh, positive("m"));
       b.polygon = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
+      // The same check as a polygon's (an outline that would not read back, or build, is refused here).
+      if (const std::string err = geometry::convexity_error(b.polygon); !err.empty())
+        ctx.fail(r.self(), "the rectangle's outline is unusable: " + err +
+                               " (width and height must be within a factor 1e9 of each other, each in [1e-60, 1e60] m)");
     }
     r.finish();
   }
@@ -290,7 +298,7 @@ IceSheetSpec read_ice_sheet(MapReader m) {
 
 void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   MapReader top(ctx, {root, YAML::Node(), ""});
-  top.text("name", s.name);
+  top.file_name("name", s.name);
   read_run(top.block("run"), s.time);
   read_output(top.block("output"), s.output);
   read_ice(top.block("ice"), s);
@@ -384,12 +392,49 @@ void apply_override(Context& ctx, YAML::Node& root, const std::string& arg) {
   set_path(ctx, root, keys, 0, "", value, key);
 }
 
+// yaml-cpp 0.7 accepts a quoted scalar left open at the end of the text (it folds the rest of the file into it):
+// where the first quote that is never closed starts, if any.
+std::optional<YAML::Mark> unclosed_quote(const std::string& text, const YAML::Node& n) {
+  if (!n.IsDefined()) return std::nullopt;
+  if (n.IsScalar()) {
+    const int pos = n.Mark().pos;
+    if (n.Mark().is_null() || pos < 0 || static_cast<std::size_t>(pos) >= text.size()) return std::nullopt;
+    const char q = text[static_cast<std::size_t>(pos)];
+    if (q != '"' && q != '\'') return std::nullopt;
+    for (std::size_t i = static_cast<std::size_t>(pos) + 1; i < text.size(); ++i) {
+      if (q == '"' && text[i] == '\\') ++i;                       // an escape: skip the escaped character
+      else if (q == '\'' && text.compare(i, 2, "''") == 0) ++i;  // '' is a quote inside a single-quoted string
+      else if (text[i] == q) return std::nullopt;
+    }
+    return n.Mark();
+  }
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    const bool map = n.IsMap();
+    for (const YAML::Node& child : map ? std::vector<YAML::Node>{it->first, it->second} : std::vector<YAML::Node>{*it})
+      if (auto m = unclosed_quote(text, child)) return m;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------------------------
 
 Scene parse_scene(const std::string& text, const std::string& display_name, const std::vector<std::string>& overrides) {
   Context ctx(display_name);
+  // A binary file (or one in UTF-16) would otherwise meet the YAML parser's escape or indentation errors.
+  for (std::size_t i = 0, line = 1, column = 1; i < text.size(); ++i, ++column) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') {
+      ++line;
+      column = 0;
+    } else if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
+      std::ostringstream msg;
+      msg << display_name << ":" << line << ":" << column << ": not a text file: control byte 0x" << std::hex
+          << std::setw(2) << std::setfill('0') << static_cast<int>(c) << " (a scene is YAML text, UTF-8)";
+      throw SceneError(msg.str());
+    }
+  }
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -399,6 +444,9 @@ Scene parse_scene(const std::string& text, const std::string& display_name, cons
   } catch (const YAML::Exception& e) {
     throw SceneError(display_name + ": cannot read YAML: " + e.msg);
   }
+  if (const auto open = unclosed_quote(text, root))
+    throw SceneError(display_name + ":" + std::to_string(open->line + 1) + ":" + std::to_string(open->column + 1) +
+                     ": YAML syntax error: the quoted string that starts here is never closed");
   if (root.IsDefined() && !root.IsNull() && !root.IsMap())
     throw SceneError(ctx.where({root, YAML::Node(), ""}) + ": a scene is a block of keys (name, run, ...), got " +
                      describe(root));

@@ -180,6 +180,19 @@ class MapReader {
     if (!f) return false;
     if (!f->value.IsScalar()) ctx_.fail(*f, "expected a text, got " + describe(f->value));
     out = f->value.Scalar();
+    for (const char c : out)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+        ctx_.fail(*f, "expected one line of text without control characters (is a quoted string left open?)");
+    return true;
+  }
+  // A text that names a file or folder (the scene name: results/<name>): not empty, no '/', not . or ..
+  bool file_name(const char* key, std::string& out) {
+    const auto f = take(key);
+    if (!f) return false;
+    text(key, out);
+    if (out.empty() || out == "." || out == ".." || out.find('/') != std::string::npos)
+      ctx_.fail(*f, "expected a name usable as a folder name (not empty, no '/', not '.' or '..'), got '" + out +
+                        "'");
     return true;
   }
   bool vec2(const char* key, Vec2& out, const char* unit) {

@@ -279,3 +279,37 @@ TEST(NarrowPhase, RoundOffSliverCentroidStaysInTheOverlap) {
     EXPECT_LE(std::abs(c.point.y()), 0.5 + 1e-8);
   }
 }
+
+// Found by fuzzing (tests/fuzz/regressions/fuzz_polygon/collapsed-sliver-far-from-origin-vertex): a 3e-8 m sliver
+// triangle 9 m to the side of a 1 m x 866 m strip. Relative to the strip's first vertex (433 m away) round-off
+// collapsed the triangle to a segment, whose two opposite half-planes clipped a round-off sliver out of the strip:
+// a contact between polygons 8.5 m apart. The narrow phase now works relative to the smaller polygon's vertex and
+// refuses a containment made of a collapsed outline.
+TEST(NarrowPhase, SliverFarFromTheOtherPolygonsVertexIsNoContact) {
+  const std::vector<Vec2> sliver = {{0x1.0000000013cc7p+3, -0x1.a00000010b59dp+3},
+                                    {0x1.0000000013cc7p+3, -0x1.a00000010b59cp+3},
+                                    {0x1.ffffffffb0ce4p+2, -0x1.9ffffffde94c7p+3}};
+  const std::vector<Vec2> strip = {{-0x1.8p+0, -0x1.b1e4a94e8976bp+8},
+                                   {-0x1.ffffffffffffep-2, -0x1.b1e4a94e8976bp+8},
+                                   {-0x1.ffffffffffffep-2, 0x1.afe4a94e89769p+8},
+                                   {-0x1.8p+0, 0x1.afe4a94e89769p+8}};
+  ASSERT_EQ(geometry::convexity_error(sliver), "");
+  PlanarContact c;
+  EXPECT_FALSE(contact::planar_overlap(strip, sliver, c, true));
+  EXPECT_FALSE(contact::planar_overlap(sliver, strip, c, true));
+  // Moved into the strip, the sliver (1 ulp wide at one end) is thinner than the round-off of the strip's clipped
+  // coordinates: a contact may or may not be found, but none larger than the sliver.
+  std::vector<Vec2> inside = sliver;
+  for (Vec2& v : inside) v.x() -= 9.0;
+  for (const bool swap : {false, true}) {
+    if (contact::planar_overlap(swap ? inside : strip, swap ? strip : inside, c)) {
+      EXPECT_LE(c.area, 1e-20);
+    }
+  }
+  // A small triangle (0.1 um) at the same place is found both ways with its area.
+  const std::vector<Vec2> small = {{-1.0, -13.0}, {-1.0 + 1e-7, -13.0}, {-1.0, -13.0 + 1e-7}};
+  for (const bool swap : {false, true}) {
+    ASSERT_TRUE(contact::planar_overlap(swap ? small : strip, swap ? strip : small, c)) << swap;
+    EXPECT_NEAR(c.area, 0.5e-14, 1e-5 * 0.5e-14) << swap;
+  }
+}

@@ -292,6 +292,33 @@ TEST(SceneErrors, UnknownKeyNamesLineAndAllowedKeys) {
       << nested;
 }
 
+// Found by fuzzing (tests/fuzz/regressions/fuzz_scene_parser/slender-rectangle-does-not-read-back.yaml): a
+// rectangle or regular polygon was only checked when the world was built, so resolved_yaml() wrote it as a polygon
+// that did not read back. Both are checked by the reader now, at the key's line.
+TEST(SceneErrors, UnusableRectangleOrRegularPolygonIsRefusedByTheReader) {
+  std::string m = parse_error("floes:\n  - rectangle: {width: 20, height: 2.7e33}\n");
+  EXPECT_TRUE(contains(m, "t.yaml:2:16: key 'floes.0.rectangle': the rectangle's outline is unusable: vertices 0 and 1"))
+      << m;
+  m = parse_error("floes:\n  - regular: {sides: 5, radius: 1e-70}\n");
+  EXPECT_TRUE(contains(m, "t.yaml:2:14: key 'floes.0.regular': the regular polygon's outline is unusable: the "
+                          "polygon's size")) << m;
+}
+
+// yaml-cpp 0.7 takes a quoted string left open at the end of the file as the rest of the file; a control byte
+// means the file is not text. Both are syntax errors with the line.
+TEST(SceneErrors, UnclosedQuoteAndBinaryBytes) {
+  std::string m = parse_error("run: {duration: 1}\nname: \"abc\nfloes: []\n");
+  EXPECT_TRUE(contains(m, "t.yaml:2:7: YAML syntax error: the quoted string that starts here is never closed")) << m;
+  m = parse_error("name: 'it''s\n");
+  EXPECT_TRUE(contains(m, "t.yaml:1:7: YAML syntax error: the quoted string")) << m;
+  m = parse_error("run: {duration: 1}\n  \x01\n");
+  EXPECT_TRUE(contains(m, "t.yaml:2:3: not a text file: control byte 0x01")) << m;
+  const Scene s = parse_scene("name: \"a \\\" b\"\nfloes:\n  - rectangle: {width: 1, height: 1}\n", "ok.yaml", {});
+  EXPECT_EQ(s.name, "a \" b");
+  m = parse_error("name: \"../up\"\n");
+  EXPECT_TRUE(contains(m, "t.yaml:1:7: key 'name': expected a name usable as a folder name")) << m;
+}
+
 TEST(SceneErrors, WrongType) {
   std::string m = parse_error(std::string(kOneFloe) + "run:\n  duration: long\n");
   EXPECT_EQ(m, "t.yaml:4:13: key 'run.duration': expected a number [s], got 'long'");
