@@ -510,8 +510,13 @@ File::File(const fs::path& path, Mode mode) : path_(path) {
     case Mode::read_only:
       id = H5Fopen(name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
       // A file whose SWMR writer is still running, or was killed, is marked as open for writing: it is read as a
-      // SWMR reader, which sees it as of the writer's last flush (always consistent).
-      if (id < 0) id = H5Fopen(name.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
+      // SWMR reader, which sees it as of the writer's last flush. A SWMR reader retries a metadata block whose
+      // checksum fails (it may be in the middle of a write), by default 100 times with a doubling sleep: on a block
+      // that a killed writer left torn that never ends. A few tries, then an error.
+      if (id < 0) {
+        scope.check(H5Pset_metadata_read_attempts(fapl.id(), 4), "H5Pset_metadata_read_attempts");
+        id = H5Fopen(name.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl.id());
+      }
       break;
     case Mode::read_write: id = H5Fopen(name.c_str(), H5F_ACC_RDWR, H5P_DEFAULT); break;
   }

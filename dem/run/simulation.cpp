@@ -48,8 +48,18 @@ void clear_previous_outputs(const std::filesystem::path& dir) {
     fs::remove(sub, ec);  // only succeeds when empty
   }
   for (const char* name : {"floes.pvd", "contacts.pvd", "bonds.pvd", "velocity.pvd", "results.h5",
-                           "scene.resolved.yaml"})
+                           "scene.resolved.yaml", kInterruptedResults})
     fs::remove(dir / name, ec);
+  // A previous run's checkpoints (a restart must not find them) and its copy of results.h5.
+  const fs::path checkpoints = dir / "checkpoints";
+  for (const auto& entry : fs::directory_iterator(checkpoints, ec)) {
+    const std::string f = entry.path().filename().string();
+    const bool ours = entry.path().extension() == ".h5" &&
+                      (f.rfind("checkpoint_", 0) == 0 || f == "unstable.h5" || f == "results.h5");
+    const bool temporary = f.rfind(".checkpoint_", 0) == 0 || f.rfind(".results.h5", 0) == 0;
+    if (entry.is_regular_file(ec) && (ours || temporary)) fs::remove(entry.path(), ec);
+  }
+  fs::remove(checkpoints, ec);  // only succeeds when empty
 }
 
 // The velocity grid the scene asks for (its region, or every body at t = 0), checked against the size limit.
@@ -187,6 +197,26 @@ void prune_checkpoints(const std::filesystem::path& output_dir, int keep) {
   for (std::size_t k = 0; k + static_cast<std::size_t>(keep) < files.size(); ++k) fs::remove(files[k], ec);
 }
 
+// Reads what a restart copies from an interrupted run's results: the first `frames` rows of every series and every
+// other dataset whole. Throws io::IoError (naming the dataset) when a block cannot be read or a series is short.
+void readable_frames(const io::hdf5::Group& g, std::uint64_t frames) {
+  for (const io::hdf5::Group::Child& c : g.children()) {
+    if (c.group) {
+      readable_frames(g.open_group(c.name), frames);
+      continue;
+    }
+    const io::hdf5::Dataset d = g.open_dataset(c.name);
+    if (!d.extendible()) {
+      (void)d.read<double>();
+    } else if (d.rows() < frames) {
+      throw io::IoError(d.where() + ": " + std::to_string(d.rows()) + " rows, fewer than the checkpoint's " +
+                        std::to_string(frames) + " frames");
+    } else if (frames > 0) {
+      (void)d.read_rows<double>(0, frames);
+    }
+  }
+}
+
 }  // namespace
 
 Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options,
@@ -211,25 +241,37 @@ Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const R
   std::error_code ec;
   const int frames = c.frames;
   if (scene_.output.hdf5) {
-    fs::path previous = dir / kInterruptedResults;
-    if (!fs::exists(previous, ec)) previous = dir / "results.h5";
-    if (!fs::exists(previous, ec))
-      throw CheckpointError(where + "the interrupted run's results are not in " + dir.string() +
-                            " (no results.h5); give its output folder with -o");
-    try {
-      const io::hdf5::File f(previous, io::hdf5::File::Mode::read_only);
-      const io::hdf5::Dataset t = f.root().open_dataset("time");
-      if (t.rows() < static_cast<std::uint64_t>(frames))
-        throw CheckpointError(where + previous.string() + " has " + std::to_string(t.rows()) +
-                              " frames, the checkpoint follows frame " + std::to_string(frames - 1));
-      const std::vector<double> last = t.read_rows<double>(static_cast<std::uint64_t>(frames - 1), 1);
-      if (last[0] != c.frame_times.back())
-        throw CheckpointError(where + previous.string() + " has frame " + std::to_string(frames - 1) + " at t = " +
-                              std::to_string(last[0]) + " s, the checkpoint at t = " +
-                              std::to_string(c.frame_times.back()) + " s: they belong to different runs");
-    } catch (const io::IoError& e) {
-      throw CheckpointError(where + "the interrupted run's " + previous.string() + " cannot be read (" + e.what() +
-                            "); restart into a new folder with -o to rerun from the start");
+    // The interrupted run's frames: from the file a killed restart left aside, else results.h5, else the copy
+    // taken with the checkpoints (for a results.h5 the kill left unreadable).
+    std::string why;
+    for (const fs::path& previous : {dir / kInterruptedResults, dir / "results.h5", dir / kResultsSnapshot}) {
+      if (!fs::exists(previous, ec)) continue;
+      try {
+        const io::hdf5::File f(previous, io::hdf5::File::Mode::read_only);
+        const io::hdf5::Dataset t = f.root().open_dataset("time");
+        if (t.rows() < static_cast<std::uint64_t>(frames)) {
+          why += "; " + previous.string() + " has " + std::to_string(t.rows()) + " frames, the checkpoint follows frame " +
+                 std::to_string(frames - 1);
+          continue;
+        }
+        const std::vector<double> last = t.read_rows<double>(static_cast<std::uint64_t>(frames - 1), 1);
+        if (last[0] != c.frame_times.back())
+          throw CheckpointError(where + previous.string() + " has frame " + std::to_string(frames - 1) + " at t = " +
+                                std::to_string(last[0]) + " s, the checkpoint at t = " +
+                                std::to_string(c.frame_times.back()) + " s: they belong to different runs");
+        readable_frames(f.root(), static_cast<std::uint64_t>(frames));  // every series, as the copy will read it
+        restart_results_ = previous;
+        break;
+      } catch (const io::IoError& e) {
+        why += "; " + previous.string() + " cannot be read (" + e.what() + ")";
+      }
+    }
+    if (restart_results_.empty()) {
+      if (why.empty())
+        throw CheckpointError(where + "the interrupted run's results are not in " + dir.string() +
+                              " (no results.h5); give its output folder with -o");
+      throw CheckpointError(where + "no copy of the interrupted run's results holds the checkpoint's frames" + why +
+                            "; restart into a new folder with -o to rerun from the start");
     }
   }
   if (scene_.output.vtk) {
@@ -281,11 +323,13 @@ RunSummary Simulation::run() {
              {"channel", "strait_mean_speed", "m/s", "mean speed of the floes in the strait"},
              {"channel", "jammed", "1", "1 while no ice has passed for channel.jam_window and the funnel's ice is slower than channel.jam_speed"}};
   }
-  fs::path interrupted;  // a restart: the interrupted run's results.h5, moved aside while its frames are copied
+  fs::path adopt_from;  // a restart: the file the interrupted run's frames are copied from
   if (restart_ && scene_.output.hdf5) {
-    interrupted = out / kInterruptedResults;
-    std::error_code ec;
-    if (!fs::exists(interrupted, ec)) fs::rename(out / "results.h5", interrupted);
+    adopt_from = restart_results_;
+    if (adopt_from == out / "results.h5") {  // moved aside while its frames are copied into a new results.h5
+      adopt_from = out / kInterruptedResults;
+      fs::rename(out / "results.h5", adopt_from);
+    }
   }
   if (scene_.output.hdf5) {
     io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
@@ -315,6 +359,14 @@ RunSummary Simulation::run() {
     frame_times.push_back(world_.time());
   };
   auto checkpoint = [&](const char* kind, const fs::path& file) {
+    if (h5) {  // the copy of results.h5 first: it then holds at least the frames of every checkpoint on disk
+      h5->flush();
+      const fs::path snapshot = out / kResultsSnapshot;
+      fs::create_directories(snapshot.parent_path());
+      const fs::path tmp = io::temporary_sibling(snapshot);
+      fs::copy_file(out / "results.h5", tmp, fs::copy_options::overwrite_existing);
+      io::commit_file_atomic(tmp, snapshot);
+    }
     Checkpoint c;
     c.kind = kind;
     c.code_version = options_.version;
@@ -336,9 +388,10 @@ RunSummary Simulation::run() {
     frame_times = c.frame_times;
     next_frame = c.next_frame;
     if (h5) {
-      h5->adopt_frames(interrupted, frames);
-      h5->start_swmr();         // consistent on disk from here on ...
-      fs::remove(interrupted);  // ... so the interrupted run's file can go
+      h5->adopt_frames(adopt_from, frames);
+      h5->start_swmr();  // consistent on disk from here on ...
+      std::error_code ec;
+      fs::remove(out / kInterruptedResults, ec);  // ... so the interrupted run's file can go
     }
     if (vtk) vtk->resume(frame_times, world_.bonds() != nullptr);
     if (velocity_grid) velocity_grid->resume(*c.next_sample, frame_times);

@@ -35,6 +35,11 @@ struct RunOptions {
 // The interrupted run's results.h5 is moved here while a restart copies its frames into a new one (kept if the
 // restart itself is interrupted, and used by the next restart).
 inline constexpr const char* kInterruptedResults = ".results.h5.interrupted";
+// A copy of results.h5 taken (atomically) with every checkpoint, just before it: HDF5 does not promise a file that a
+// killed writer leaves behind; this copy holds every frame up to the newest checkpoint whatever the kill did. A
+// restart copies its frames from the first of the interrupted file, results.h5 and this copy that reads back with
+// the checkpoint's frames.
+inline constexpr const char* kResultsSnapshot = "checkpoints/results.h5";
 
 struct RunSummary {
   std::uint64_t steps = 0;
@@ -76,6 +81,7 @@ class Simulation {
   std::string signature_;
   std::optional<io::ImageGrid> grid_geometry_;
   std::optional<Checkpoint> restart_;
+  std::filesystem::path restart_results_;  // a restart: the file its frames are copied from (see kResultsSnapshot)
 };
 
 }  // namespace polyfloe::run

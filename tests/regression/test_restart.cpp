@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -126,7 +127,7 @@ void expect_readable_after_kill(const fs::path& dir) {
     }
   }
   std::size_t frames_in_h5 = 0;
-  for (const char* name : {"results.h5", ".results.h5.interrupted"}) {
+  for (const char* name : {"results.h5", ".results.h5.interrupted", "checkpoints/results.h5"}) {
     if (!fs::exists(dir / name)) continue;
     try {
       const File f(dir / name, File::Mode::read_only);
@@ -134,6 +135,12 @@ void expect_readable_after_kill(const fs::path& dir) {
       if (std::string(name) == ".results.h5.interrupted") break;  // the restart's source of truth
     } catch (const std::exception& e) {
       if (std::string(name) == "results.h5" && fs::exists(dir / ".results.h5.interrupted")) continue;  // being rebuilt
+      // HDF5 does not promise a file its killed writer leaves: the copy taken with the checkpoints must then hold
+      // every frame of the newest checkpoint (checked below).
+      if (std::string(name) != "checkpoints/results.h5" && fs::exists(dir / "checkpoints/results.h5")) {
+        std::fprintf(stderr, "note: %s unreadable after a kill (%s); the checkpoints' copy stands in\n", name, e.what());
+        continue;
+      }
       // Killed while a fresh run was creating its files, before its first frame: nothing was complete to lose.
       const bool nothing_done =
           !fs::exists(dir / "floes.pvd") || polyfloe::tsupport::read_pvd(dir / "floes.pvd").empty();
@@ -319,21 +326,27 @@ std::uint64_t expect_series_readable(const Group& g, std::uint64_t frames) {
 }
 
 TEST(Restart, KilledWhileWritingHdf5EveryStepLeavesAReadableFile) {
-  // Two floes, HDF5 only, a frame at every step (2,528 frames): the process spends most of its time appending to
-  // results.h5 and flushing it, so the kills land in the middle of writes. Every kill must leave a file that opens,
-  // with every frame's rows.
+  // Two floes, HDF5 only, a frame at every step (2,528 frames), a checkpoint every 200 frames: the process spends
+  // most of its time appending to results.h5 and flushing it, so the kills land in the middle of writes. Every kill
+  // must leave every flushed frame readable in results.h5, or (HDF5 does not promise a file its killed writer
+  // leaves, and 1 kill in a few hundred here tears a metadata block) every frame of the newest checkpoint readable
+  // in the copy taken with it, checkpoints/results.h5.
   const std::vector<std::string> args{"run", kSource + "/dem/scenes/two_floes.yaml", "--set", "output.vtk=false",
-                                      "--set", "output.interval=1e-4", "--set", "output.checkpoint.every=0"};
+                                      "--set", "output.interval=1e-4", "--set", "output.checkpoint.every=200"};
   const fs::path out = scratch("h5kill");
   fs::remove_all(out);
   std::vector<std::string> a = args;
   a.insert(a.end(), {"-o", out.string()});
-  const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_EQ(run_to_end(a, out.string() + ".log"), 0) << slurp(out.string() + ".log");
-  const double wall = seconds_since(t0);
+  // The uninterrupted run's wall time: the faster of two (the first may pay for a cold start).
+  double wall = 1e300;
+  for (int k = 0; k < 2; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ASSERT_EQ(run_to_end(a, out.string() + ".log"), 0) << slurp(out.string() + ".log");
+    wall = std::min(wall, seconds_since(t0));
+  }
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> when(0.4, 0.95);
-  int killed = 0;
+  int killed = 0, torn = 0;
   for (int k = 0; k < 20; ++k) {
     const pid_t pid = spawn(a, out.string() + ".log");
     std::this_thread::sleep_for(std::chrono::duration<double>(when(rng) * wall));
@@ -345,12 +358,58 @@ TEST(Restart, KilledWhileWritingHdf5EveryStepLeavesAReadableFile) {
       const std::uint64_t frames = f.root().open_dataset("time").rows();
       EXPECT_GT(expect_series_readable(f.root(), frames), 10u);
     } catch (const std::exception& e) {
-      ADD_FAILURE() << "kill " << k << " left results.h5 unreadable: " << e.what();
+      ++torn;
+      std::fprintf(stderr, "kill %d left results.h5 unreadable (%s)\n", k, e.what());
+      if (!fs::is_directory(out / "checkpoints")) continue;  // before the first checkpoint: nothing promised
+      const polyfloe::run::Checkpoint c = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(out));
+      const File f(out / "checkpoints/results.h5", File::Mode::read_only);
+      EXPECT_GE(f.root().open_dataset("time").rows(), static_cast<std::uint64_t>(c.frames)) << "kill " << k;
+      EXPECT_GT(expect_series_readable(f.root(), static_cast<std::uint64_t>(c.frames)), 10u) << "kill " << k;
     }
   }
+  std::fprintf(stderr, "%d kills, results.h5 unreadable after %d\n", killed, torn);
   EXPECT_GE(killed, 15);
   fs::remove_all(out);
   fs::remove(out.string() + ".log");
+}
+
+// A results.h5 the kill left unreadable (here: cut in half): the restart copies the frames from the copy taken with
+// the checkpoint, and the run still ends bitwise as the uninterrupted one.
+TEST(Restart, UnreadableResultsAreRebuiltFromTheCheckpointsCopy) {
+  const std::vector<std::string> args{"run", kSource + "/dem/scenes/two_floes.yaml", "--set",
+                                      "output.checkpoint.every=5"};
+  const fs::path ref = scratch("torn_ref"), dir = scratch("torn");
+  fs::remove_all(ref);
+  fs::remove_all(dir);
+  std::vector<std::string> a = args;
+  a.insert(a.end(), {"-o", ref.string()});
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run_to_end(a, ref.string() + ".log"), 0) << slurp(ref.string() + ".log");
+  const double wall = seconds_since(t0);
+  a = args;
+  a.insert(a.end(), {"-o", dir.string()});
+  const pid_t pid = spawn(a, dir.string() + ".log");
+  std::this_thread::sleep_for(std::chrono::duration<double>(0.6 * wall));
+  kill(pid, SIGKILL);
+  wait_for(pid);
+  ASSERT_TRUE(fs::exists(dir / "checkpoints/results.h5"));
+  const std::string bytes = slurp(dir / "results.h5");
+  std::ofstream(dir / "results.h5", std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() / 2);
+  a.insert(a.end(), {"--restart", dir.string()});
+  ASSERT_EQ(run_to_end(a, dir.string() + ".log"), 0) << slurp(dir.string() + ".log");
+  expect_same_run(ref, dir);
+  EXPECT_FALSE(fs::exists(dir / ".results.h5.interrupted"));
+  // Both copies gone: refused, naming each file and why.
+  std::ofstream(dir / "results.h5", std::ios::trunc) << "x";
+  std::ofstream(dir / "checkpoints/results.h5", std::ios::trunc) << "x";
+  EXPECT_EQ(run_to_end(a, dir.string() + ".log"), 2);
+  const std::string log = slurp(dir.string() + ".log");
+  EXPECT_NE(log.find("no copy of the interrupted run's results holds the checkpoint's frames"), std::string::npos) << log;
+  EXPECT_NE(log.find("checkpoints/results.h5 cannot be read"), std::string::npos) << log;
+  fs::remove_all(ref);
+  fs::remove_all(dir);
+  fs::remove(ref.string() + ".log");
+  fs::remove(dir.string() + ".log");
 }
 
 TEST(Restart, BadCheckpointsAreRefusedBeforeAnyOutputIsTouched) {
