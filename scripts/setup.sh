@@ -4,6 +4,7 @@
 #
 #   bash scripts/setup.sh          # build, test, run, plot
 #   bash scripts/setup.sh fuzz     # the same plus clang and its libFuzzer/sanitizer runtimes (scripts/fuzz.sh)
+#   bash scripts/setup.sh bench    # the same plus LAMMPS, the disk-pack anchor of scripts/bench_lammps.sh
 set -euo pipefail
 
 PACKAGES=(
@@ -14,11 +15,13 @@ PACKAGES=(
 )
 # Optional groups, named on the command line.
 FUZZ_PACKAGES=(clang libclang-rt-dev)
+BENCH_PACKAGES=(lammps)
 
 for group in "$@"; do
   case "$group" in
     fuzz) PACKAGES+=("${FUZZ_PACKAGES[@]}") ;;
-    *) echo "setup: unknown group '$group' (known: fuzz)" >&2; exit 2 ;;
+    bench) PACKAGES+=("${BENCH_PACKAGES[@]}") ;;
+    *) echo "setup: unknown group '$group' (known: fuzz, bench)" >&2; exit 2 ;;
   esac
 done
 
