@@ -3,7 +3,9 @@
 # jammed periodic disk pack of tests/bench/lammps/disk_pack.in, and PolyFloe's DensePack benchmark
 # (tests/bench/bench_step.cpp: 12-gon floes in a jammed pack), one core each, one after the other.
 #
-#   bash scripts/bench_lammps.sh              # 1.6k, 14.4k and 160k disks; DensePack 1.5k, 15k, 150k floes
+#   bash scripts/bench_lammps.sh              # 1.6k, 14.4k and 160k disks; DensePack 1.5k, 15k, 150k floes and
+#                                             # DensePackContactOnly (no drift terms, as the disks) up to 1.5M
+#   bash scripts/bench_lammps.sh -s 1,3,10,31 # ... and 1.54M disks
 #   bash scripts/bench_lammps.sh -r 3         # medians of 3 repetitions
 #   bash scripts/bench_lammps.sh -s 1,3       # only the 1.6k and 14.4k disk packs (replication factors)
 #
@@ -18,7 +20,7 @@ while [[ $# -gt 0 ]]; do
   case "$1" in
     -r) REPS="$2"; shift 2 ;;
     -s) REPLICAS="$2"; shift 2 ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
     *) echo "bench_lammps.sh: unknown argument '$1' (try -h)" >&2; exit 2 ;;
   esac
 done
@@ -63,14 +65,16 @@ for rep in "${reps_list[@]}"; do
     "$atoms" "$ns" "$contacts" "$area"
 done
 
-bench_args=(--benchmark_filter='BM_DensePack/' --benchmark_format=console)
+bench_args=(--benchmark_filter='BM_DensePack(ContactOnly)?/' --benchmark_format=console)
 [[ "$REPS" -gt 1 ]] && bench_args+=(--benchmark_repetitions="$REPS" --benchmark_report_aggregates_only=true)
 "$BUILD_DIR/tests/bench_step" "${bench_args[@]}" --benchmark_out="$OUT/bench_step_densepack.json" \
   --benchmark_out_format=json >"$WORK/poly" 2>/dev/null
-echo "floes,polyfloe_us_per_floe_step,polyfloe_over_lammps" >"$OUT/polyfloe_vs_lammps.csv"
-# The polygons against the disk pack of the nearest size.
-grep -E '^BM_DensePack/[0-9]+(/iterations:[0-9]+)?(_median)? ' "$WORK/poly" | while read -r line; do
-  floes=$(sed -E 's|^BM_DensePack/([0-9]+).*|\1|' <<<"$line")
+echo "case,floes,polyfloe_us_per_floe_step,polyfloe_over_lammps" >"$OUT/polyfloe_vs_lammps.csv"
+# The polygons against the disk pack of the nearest size: ContactOnly (no drift terms, like the disks) and the
+# DensePack with every drift term.
+grep -E '^BM_DensePack(ContactOnly)?/[0-9]+(/iterations:[0-9]+)?(_median)? ' "$WORK/poly" | while read -r line; do
+  kind=$(sed -E 's|^BM_(DensePack(ContactOnly)?)/.*|\1|' <<<"$line")
+  floes=$(sed -E 's|^BM_DensePack(ContactOnly)?/([0-9]+).*|\2|' <<<"$line")
   us=$(grep -oE 'us_per_floe_step=[0-9.]+' <<<"$line" | cut -d= -f2)
   best=""; bestd=""
   for n in "${!lammps_ns[@]}"; do
@@ -78,7 +82,8 @@ grep -E '^BM_DensePack/[0-9]+(/iterations:[0-9]+)?(_median)? ' "$WORK/poly" | wh
     if [[ -z "$bestd" ]] || awk -v x="$d" -v y="$bestd" 'BEGIN { exit !(x < y) }'; then best=$n; bestd=$d; fi
   done
   ratio=$(awk -v u="$us" -v l="${lammps_ns[$best]:-0}" 'BEGIN { if (l > 0) printf "%.2f", u * 1000 / l; else print "-" }')
-  echo "$floes,$us,$ratio" >>"$OUT/polyfloe_vs_lammps.csv"
-  printf 'PolyFloe %7d floes   %7.0f ns per floe-step       %s x LAMMPS (%s disks)\n' "$floes" "$(awk -v u="$us" 'BEGIN { print u * 1000 }')" "$ratio" "$best"
+  echo "$kind,$floes,$us,$ratio" >>"$OUT/polyfloe_vs_lammps.csv"
+  printf 'PolyFloe %-23s %8d floes   %7.0f ns per floe-step   %s x LAMMPS (%s disks)\n' "$kind" "$floes" \
+    "$(awk -v u="$us" 'BEGIN { print u * 1000 }')" "$ratio" "$best"
 done
 echo "results: $OUT/lammps.csv, $OUT/polyfloe_vs_lammps.csv, $OUT/bench_step_densepack.json"

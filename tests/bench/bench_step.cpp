@@ -6,12 +6,15 @@
 //   BM_DensePackSorted/150000  the same pack with the bodies stored in lattice (row-major) order, so that bodies
 //                      close in space are close in memory: what locality is worth.
 //   BM_FreeDrift/<N>   an open field at area fraction ~0.62 with random velocities (few contacts).
+//   BM_DensePackContactOnly/<N>  the DensePack with every drift term off: the contact dynamics alone, what the
+//                      LAMMPS disk pack of scripts/bench_lammps.sh does (it has no drag); up to 1.5M floes.
 //
 // Bodies are stored in random order (as a generated field stores them, largest first, with no relation to
 // position) except in BM_DensePackSorted.
 //
-// All have skin and air drag on (current 0.2 m/s, wind 10 m/s, not aligned), h = 1 m, and
-// dt = shortest_contact_duration(1 m/s) / 40, the time step a scene would use.
+// All but DensePackContactOnly have every default drift term on (form drag, drag moment, skin and air drag;
+// current 0.2 m/s, wind 10 m/s, not aligned); h = 1 m, dt = shortest_contact_duration(1 m/s) / 40, the time step a
+// scene would use.
 //
 // How the pack is built (no DEM compaction needed, so 150,000 floes set up in seconds): generators on a square
 // lattice of spacing s = 9 m, jittered by up to +-0.03 s; each floe is its generator's Voronoi cell (inside the
@@ -192,11 +195,12 @@ Pack make_pack(int n_target, const PackSpec& ps, std::uint64_t seed) {
   return pack;
 }
 
-enum class Kind { dense, dense_sorted, free };
+enum class Kind { dense, dense_sorted, free, dense_contact };
 
 const Pack& pack_for(int n, Kind kind) {
   // Generated once per (N, kind): repetitions rebuild the World from the same bodies but not the geometry.
   static std::map<std::pair<int, Kind>, Pack> cache;
+  if (kind == Kind::dense_contact) kind = Kind::dense;  // the same pack
   auto it = cache.find({n, kind});
   if (it != cache.end()) return it->second;
   PackSpec ps;
@@ -218,6 +222,8 @@ void run(benchmark::State& state, Kind kind) {
   dynamics::WorldSettings ws;
   ws.drift.ocean = forcing::make_field(forcing::FieldSpec::uniform({0.2, 0.05}));
   ws.drift.wind = forcing::make_field(forcing::FieldSpec::uniform({8.0, 6.0}));
+  if (kind == Kind::dense_contact)
+    ws.drift.form_drag = ws.drift.moment_drag = ws.drift.skin_drag = ws.drift.air_drag = ws.drift.coriolis = false;
   dynamics::World world(ws);
   for (const auto& d : pack.bodies) world.add_body(d);
   const double dt = world.shortest_contact_duration(1.0) / 40.0;
@@ -293,6 +299,7 @@ void run(benchmark::State& state, Kind kind) {
 void BM_DensePack(benchmark::State& state) { run(state, Kind::dense); }
 void BM_DensePackSorted(benchmark::State& state) { run(state, Kind::dense_sorted); }
 void BM_FreeDrift(benchmark::State& state) { run(state, Kind::free); }
+void BM_DensePackContactOnly(benchmark::State& state) { run(state, Kind::dense_contact); }
 
 }  // namespace
 
@@ -304,5 +311,10 @@ BENCHMARK(BM_DensePackSorted)->Arg(150000)->Iterations(10)->Unit(benchmark::kMil
 BENCHMARK(BM_FreeDrift)->Arg(1500)->Iterations(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FreeDrift)->Arg(15000)->Iterations(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FreeDrift)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
+
+BENCHMARK(BM_DensePackContactOnly)->Arg(1500)->Iterations(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnly)->Arg(15000)->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnly)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnly)->Arg(1500000)->Iterations(3)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
