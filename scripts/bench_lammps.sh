@@ -65,14 +65,14 @@ for rep in "${reps_list[@]}"; do
     "$atoms" "$ns" "$contacts" "$area"
 done
 
-bench_args=(--benchmark_filter='BM_DensePack(ContactOnly)?/' --benchmark_format=console)
+bench_args=(--benchmark_filter='BM_DensePack(ContactOnly)?/[0-9]+/1/' --benchmark_format=console)
 [[ "$REPS" -gt 1 ]] && bench_args+=(--benchmark_repetitions="$REPS" --benchmark_report_aggregates_only=true)
 "$BUILD_DIR/tests/bench_step" "${bench_args[@]}" --benchmark_out="$OUT/bench_step_densepack.json" \
   --benchmark_out_format=json >"$WORK/poly" 2>/dev/null
 echo "case,floes,polyfloe_us_per_floe_step,polyfloe_over_lammps" >"$OUT/polyfloe_vs_lammps.csv"
 # The polygons against the disk pack of the nearest size: ContactOnly (no drift terms, like the disks) and the
-# DensePack with every drift term.
-grep -E '^BM_DensePack(ContactOnly)?/[0-9]+(/iterations:[0-9]+)?(_median)? ' "$WORK/poly" | while read -r line; do
+# DensePack with every drift term; one thread, as LAMMPS runs.
+grep -E '^BM_DensePack(ContactOnly)?/[0-9]+/1(/iterations:[0-9]+)?(_median)? ' "$WORK/poly" | while read -r line; do
   kind=$(sed -E 's|^BM_(DensePack(ContactOnly)?)/.*|\1|' <<<"$line")
   floes=$(sed -E 's|^BM_DensePack(ContactOnly)?/([0-9]+).*|\2|' <<<"$line")
   us=$(grep -oE 'us_per_floe_step=[0-9.]+' <<<"$line" | cut -d= -f2)

@@ -43,7 +43,7 @@ Options:
   -o, --output DIR        output folder (default: results/<scene name>)
   --set KEY.PATH=VALUE    override a scene value, repeatable, e.g. --set run.duration=60
                           --set forcing.ocean.current=[0.5,0] --set floes.0.position=[10,0]
-  --threads N             worker threads (>= 1; the step is serial in this version)
+  --threads N             worker threads of the step (OpenMP, default 1); the result is bitwise the same for any N
   --profile               print where the step time went
   --restart CKPT|DIR      continue an interrupted run from a checkpoint file, or from the newest checkpoint of
                           a run's output folder; the result is bitwise that of an uninterrupted run (same scene

@@ -1,8 +1,10 @@
 // Stage: broad phase, planar narrow phase and the contact law, accumulated into forces and torques.
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <utility>
 
+#include "dynamics/parallel.h"
 #include "dynamics/world.h"
 
 namespace polyfloe::dynamics {
@@ -13,16 +15,21 @@ void World::contact_forces(double dt) {
   broad_.find_pairs(boxes_, is_dynamic_, pairs_);
   const auto t1 = clock::now();
 
-  contacts_.clear();
-  worst_q2_ = worst_v2_ = 0.0;
-  worst_a_ = worst_b_ = -1;
-  for (const contact::CandidatePair& cp : pairs_) {
+  // Every candidate pair evaluated apart (in parallel: the cache is only read here), then added up in the broad
+  // phase's order on one thread, so the sums, the stored springs and the contact list do not depend on the threads.
+  const std::size_t np = pairs_.size();
+  pair_results_.resize(np);
+  const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
+  const int np_int = static_cast<int>(np);
+  POLYFLOE_OMP_FOR(threads_)
+  for (int p = 0; p < np_int; ++p) {
+    PairResult& r = pair_results_[static_cast<std::size_t>(p)];
+    r.hit = false;
     // Orient every pair by id so the stored spring has one meaning whatever the index order.
-    int a = cp.a, b = cp.b;
+    int a = pairs_[p].a, b = pairs_[p].b;
     if (id_[a] > id_[b]) std::swap(a, b);
     if (bonds_ && bonds_->bonded(a, b)) continue;  // frozen together: the bond carries the load
-    const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
-    contact::PlanarContact g;
+    contact::PlanarContact& g = r.g;
     if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g, gradient)) continue;
 
     const Vec2 t = geometry::perp_left(g.normal);
@@ -56,29 +63,40 @@ void World::contact_forces(double dt) {
     // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
     // penetration).
     if (gradient) k.mu *= std::max(0.0, dir_b.dot(g.normal));
-    const contact::ContactForce cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), cache_.previous(key), dt);
+    r.cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), cache_.previous(key), dt);
     // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
     const double km = k.k_n / k.m_star;
-    const double v2 = rate * rate + 0.8 * km * g.depth * g.depth * std::sqrt(g.depth);
-    const double q2 = v2 * (km * km) * (km * km);
-    if (q2 > worst_q2_) {
-      worst_q2_ = q2;
-      worst_v2_ = v2;
-      worst_a_ = a;
-      worst_b_ = b;
-    }
-    cache_.store(key, cf.spring);
+    r.v2 = rate * rate + 0.8 * km * g.depth * g.depth * std::sqrt(g.depth);
+    r.q2 = r.v2 * (km * km) * (km * km);
 
     // On b: the normal part, and friction along t at the centroid; a gets the opposite force and the torque that
     // keeps the total angular momentum unchanged.
-    const Vec2 ft = cf.tangential * t;
-    const Vec2 f = cf.normal * dir_b + ft;
-    const double tau_b = cf.normal * arm_b + geometry::cross(rb, ft);
-    force_[b] += f;
-    torque_[b] += tau_b;
-    force_[a] -= f;
-    torque_[a] += -tau_b + geometry::cross(da - db, f);
-    contacts_.push_back({a, b, g, cf.normal, cf.tangential, cf.sliding, f});
+    const Vec2 ft = r.cf.tangential * t;
+    r.f = r.cf.normal * dir_b + ft;
+    r.tau_b = r.cf.normal * arm_b + geometry::cross(rb, ft);
+    r.tau_a = -r.tau_b + geometry::cross(da - db, r.f);
+    r.a = a;
+    r.b = b;
+    r.hit = true;
+  }
+
+  contacts_.clear();
+  worst_q2_ = worst_v2_ = 0.0;
+  worst_a_ = worst_b_ = -1;
+  for (const PairResult& r : pair_results_) {
+    if (!r.hit) continue;
+    if (r.q2 > worst_q2_) {
+      worst_q2_ = r.q2;
+      worst_v2_ = r.v2;
+      worst_a_ = r.a;
+      worst_b_ = r.b;
+    }
+    cache_.store(contact::PairKey{id_[r.a], id_[r.b]}, r.cf.spring);
+    force_[r.b] += r.f;
+    torque_[r.b] += r.tau_b;
+    force_[r.a] -= r.f;
+    torque_[r.a] += r.tau_a;
+    contacts_.push_back({r.a, r.b, r.g, r.cf.normal, r.cf.tangential, r.cf.sliding, r.f});
   }
   cache_.end_step();
   const auto t2 = clock::now();

@@ -1,6 +1,7 @@
 // Stage: drift forces on every dynamic body - form drag on the submerged side faces, the drag moment, skin drag
 // on the bottom, air drag on the top, Coriolis - with the damping matrix the final half kick uses to treat them
 // semi-implicitly. Spatially uniform fields (and still water, calm air) are sampled once per step.
+#include "dynamics/parallel.h"
 #include "dynamics/world.h"
 
 namespace polyfloe::dynamics {
@@ -30,8 +31,29 @@ void World::drift_forces(double t) {
   const bool surfaces = s.skin_drag || s.air_drag;
   const bool semi_implicit = s.treatment == forcing::DriftTreatment::semi_implicit;
 
-  for (std::size_t i = 0; i < n; ++i) {
+  // Scratch per thread (each body's samples are independent of every other's).
+  if (drift_scratch_.size() < static_cast<std::size_t>(threads_)) drift_scratch_.resize(static_cast<std::size_t>(threads_));
+  for (DriftScratch& d : drift_scratch_) {
+    if (d.quad_rx.size() < max_quad_points_) {
+      d.quad_points.resize(max_quad_points_);
+      d.quad_fluid.resize(max_quad_points_);
+      d.quad_rx.resize(max_quad_points_);
+      d.quad_ry.resize(max_quad_points_);
+      d.quad_fx.resize(max_quad_points_);
+      d.quad_fy.resize(max_quad_points_);
+    }
+    if (d.side_points.size() < max_vertices_) {
+      d.side_points.resize(max_vertices_);
+      d.side_water.resize(max_vertices_);
+    }
+  }
+
+  const int n_int = static_cast<int>(n);
+  POLYFLOE_OMP_FOR(threads_)
+  for (int ii = 0; ii < n_int; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
     if (!is_dynamic_[i]) continue;
+    DriftScratch& scratch = drift_scratch_[static_cast<std::size_t>(polyfloe_thread_index())];
     const std::span<const Vec2> verts = world_vertices(static_cast<int>(i));
     const std::size_t nv = verts.size();
     const forcing::FloeMotion m{pos_[i], vel_eval_[i], omega_eval_[i]};
@@ -42,8 +64,8 @@ void World::drift_forces(double t) {
         if (s.form_drag)
           forcing::add_form_drag(load, s.form_drag_coefficient, s.water_density, draft_[i], m, verts, ocean.value);
       } else {
-        const std::span<forcing::Vec3> pts{side_points_.data(), nv};
-        const std::span<Vec2> water{side_water_.data(), nv};
+        const std::span<forcing::Vec3> pts{scratch.side_points.data(), nv};
+        const std::span<Vec2> water{scratch.side_water.data(), nv};
         forcing::side_sample_points(verts, draft_[i], pts);
         ocean.field->sample(t, pts, water);
         if (s.form_drag)
@@ -61,8 +83,8 @@ void World::drift_forces(double t) {
       const double c = rotation_[i].x(), sn = rotation_[i].y();
       const double* lx = quad_lx_.data() + q0;
       const double* ly = quad_ly_.data() + q0;
-      double* rx = quad_rx_.data();
-      double* ry = quad_ry_.data();
+      double* rx = scratch.quad_rx.data();
+      double* ry = scratch.quad_ry.data();
       for (std::size_t q = 0; q < nq; ++q) {
         rx[q] = c * lx[q] - sn * ly[q];
         ry[q] = sn * lx[q] + c * ly[q];
@@ -73,15 +95,15 @@ void World::drift_forces(double t) {
           forcing::add_surface_drag(load, coefficient, rho, m, samples, fluid.value);
           return;
         }
-        const std::span<forcing::Vec3> pts{quad_points_.data(), nq};
-        const std::span<Vec2> u{quad_fluid_.data(), nq};
+        const std::span<forcing::Vec3> pts{scratch.quad_points.data(), nq};
+        const std::span<Vec2> u{scratch.quad_fluid.data(), nq};
         for (std::size_t q = 0; q < nq; ++q) pts[q] = {pos_[i].x() + rx[q], pos_[i].y() + ry[q], z};
         fluid.field->sample(t, pts, u);
         for (std::size_t q = 0; q < nq; ++q) {
-          quad_fx_[q] = u[q].x();
-          quad_fy_[q] = u[q].y();
+          scratch.quad_fx[q] = u[q].x();
+          scratch.quad_fy[q] = u[q].y();
         }
-        forcing::add_surface_drag(load, coefficient, rho, m, samples, {quad_fx_.data(), nq}, {quad_fy_.data(), nq});
+        forcing::add_surface_drag(load, coefficient, rho, m, samples, {scratch.quad_fx.data(), nq}, {scratch.quad_fy.data(), nq});
       };
       if (s.skin_drag) surface(ocean, -draft_[i], s.skin_drag_coefficient, s.water_density);
       if (s.air_drag) surface(wind, thickness_[i] - draft_[i], s.air_drag_coefficient, s.air_density);

@@ -1,6 +1,7 @@
 // Stage: velocity-Verlet kicks and drift, and the world-frame shapes that follow the bodies.
 #include <cmath>
 
+#include "dynamics/parallel.h"
 #include "dynamics/world.h"
 
 namespace polyfloe::dynamics {
@@ -9,8 +10,10 @@ namespace polyfloe::dynamics {
 // only the final kick (kick_implicit), over the whole step; the first half kick applies the other forces and
 // Coriolis at the start-of-step velocity.
 void World::kick(double h) {
-  const std::size_t n = size();
-  for (std::size_t i = 0; i < n; ++i) {
+  const int n = static_cast<int>(size());
+  POLYFLOE_OMP_FOR(threads_)
+  for (int ii = 0; ii < n; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
     Vec2 f = force_[i];
     double t = torque_[i];
     if (i < drift_load_.size() && drift_load_[i].has_damping()) {
@@ -59,8 +62,10 @@ World::Vec3 World::implicit_velocity(std::size_t i, double dt) const {
 
 void World::kick_implicit(double dt) {
   const double h = 0.5 * dt;
-  const std::size_t n = size();
-  for (std::size_t i = 0; i < n; ++i) {
+  const int n = static_cast<int>(size());
+  POLYFLOE_OMP_FOR(threads_)
+  for (int ii = 0; ii < n; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
     forcing::DriftLoad& d = drift_load_[i];  // with lin_force_, set by compute_forces()
     if (!is_dynamic_[i] || !d.has_damping()) {
       vel_[i] += (h * inv_mass_[i]) * force_[i];
@@ -82,8 +87,10 @@ void World::kick_implicit(double dt) {
 }
 
 void World::drift(double dt) {
-  const std::size_t n = size();
-  for (std::size_t i = 0; i < n; ++i) {
+  const int n = static_cast<int>(size());
+  POLYFLOE_OMP_FOR(threads_)
+  for (int ii = 0; ii < n; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
     if (motion_[i] == Motion::fixed) continue;
     pos_[i] += dt * vel_[i];
     yaw_[i] += dt * omega_[i];
@@ -106,6 +113,7 @@ void World::update_shape(int i) {
 
 void World::update_shapes() {
   const int n = static_cast<int>(size());
+  POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i)
     if (motion_[i] != Motion::fixed) update_shape(i);
 }

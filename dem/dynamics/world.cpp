@@ -46,19 +46,8 @@ int World::add_body(const BodyDesc& d) {
       quad_weight_.push_back(p.weight);
     }
     quad_off_.push_back(quad_off_.back() + static_cast<int>(q.size()));
-    const std::size_t nq = q.size(), nv = d.shape->size();
-    if (quad_points_.size() < nq) {
-      quad_points_.resize(nq);
-      quad_fluid_.resize(nq);
-      quad_rx_.resize(nq);
-      quad_ry_.resize(nq);
-      quad_fx_.resize(nq);
-      quad_fy_.resize(nq);
-    }
-    if (side_points_.size() < nv) {
-      side_points_.resize(nv);
-      side_water_.resize(nv);
-    }
+    max_quad_points_ = std::max(max_quad_points_, q.size());
+    max_vertices_ = std::max(max_vertices_, static_cast<std::size_t>(d.shape->size()));
   }
   // Walls and plates are flat and immovable for the contact law: infinite radius and mass.
   radius_.push_back(dyn ? d.shape->equivalent_radius() : contact::kInfinite);

@@ -77,6 +77,12 @@ class World {
   // half-step velocities.
   void step(double dt);
 
+  // Worker threads of step() (OpenMP; 1 = serial, the default). The result does not depend on it, bitwise: the
+  // per-body stages write only their own body, and the contact stage evaluates every candidate pair apart, then
+  // adds the forces up in the broad phase's order on one thread. Without OpenMP in the build it is ignored.
+  void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
+  int threads() const { return threads_; }
+
   double time() const { return time_; }            // [s]
   std::uint64_t step_count() const { return steps_; }
   void set_time(double t, std::uint64_t steps) { time_ = t; steps_ = steps; }
@@ -211,11 +217,28 @@ class World {
   std::vector<geometry::Aabb> boxes_;
   std::vector<Vec2> rotation_;  // (cos yaw, sin yaw) of the world-frame shape
   // scratch
+  int threads_ = 1;
   std::vector<contact::CandidatePair> pairs_;
   std::vector<ContactRecord> contacts_;
-  std::vector<forcing::Vec3> side_points_, quad_points_;
-  std::vector<Vec2> side_water_, quad_fluid_;
-  std::vector<double> quad_rx_, quad_ry_, quad_fx_, quad_fy_;  // world-frame levers, sampled fluid (x, y)
+  // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
+  struct PairResult {
+    bool hit = false;
+    int a = 0, b = 0;  // ordered by id
+    contact::PlanarContact g;
+    contact::ContactForce cf;
+    Vec2 f{0.0, 0.0};  // on b
+    double tau_b = 0.0, tau_a = 0.0;
+    double v2 = 0.0, q2 = 0.0;
+  };
+  std::vector<PairResult> pair_results_;
+  // Per-thread scratch of the drift stage: sample points and sampled fluid velocities of one body.
+  struct DriftScratch {
+    std::vector<forcing::Vec3> side_points, quad_points;
+    std::vector<Vec2> side_water, quad_fluid;
+    std::vector<double> quad_rx, quad_ry, quad_fx, quad_fy;  // world-frame levers, sampled fluid (x, y)
+  };
+  std::vector<DriftScratch> drift_scratch_;
+  std::size_t max_quad_points_ = 0, max_vertices_ = 0;
   double worst_q2_ = 0.0;  // max over contacts of v^2 (k_n/m*)^4: the shortest contact has the largest
   double worst_v2_ = 0.0;
   int worst_a_ = -1, worst_b_ = -1;

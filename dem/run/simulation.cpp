@@ -223,6 +223,7 @@ Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const R
                        std::optional<Checkpoint> restart, const std::filesystem::path& restart_file)
     : scene_(scene), world_(std::move(world)), options_(options) {
   namespace fs = std::filesystem;
+  world_.set_threads(options_.threads);
   // From the world as the scene builds it (a restart's bonds may since have broken, which would change the step).
   dt_ = scene::time_step(scene_, world_);
   signature_ = body_signature(world_);

@@ -26,7 +26,7 @@ class InstabilityError : public std::runtime_error {
 
 struct RunOptions {
   std::filesystem::path output_dir;  // created if missing
-  int threads = 1;                   // worker threads requested (the step is serial in this version)
+  int threads = 1;                   // worker threads of the step (World::set_threads; bitwise the same result)
   bool interactive = false;          // stderr is a terminal: redraw a progress line
   bool profile = false;              // print where the time went at the end
   std::string version;               // code version stored in the outputs

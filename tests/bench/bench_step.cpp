@@ -1,5 +1,9 @@
 // Cost of a whole World::step per floe (kick, drift, world-frame shapes, broad phase, narrow phase + contact law +
-// contact cache, drift forcing), single thread.
+// contact cache, drift forcing), one thread unless a case's second argument says otherwise.
+//
+//   <case>/<N>/<T>     T worker threads (World::set_threads; OpenMP). With T > 1 the per-floe-step time is wall
+//                      time (the benchmark thread's CPU time would miss the other threads' work); with T = 1 it is
+//                      the thread's CPU time.
 //
 //   BM_DensePack/<N>   a jammed pack at area fraction ~0.87 inside four fixed walls: every floe already presses on
 //                      about four neighbours (or a wall) with ~2 mm overlaps when timing starts.
@@ -43,6 +47,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -217,6 +222,7 @@ const Pack& pack_for(int n, Kind kind) {
 
 void run(benchmark::State& state, Kind kind) {
   const int n = static_cast<int>(state.range(0));
+  const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : 1;
   const bool dense = kind != Kind::free;
   const Pack& pack = pack_for(n, kind);
   dynamics::WorldSettings ws;
@@ -225,6 +231,7 @@ void run(benchmark::State& state, Kind kind) {
   if (kind == Kind::dense_contact)
     ws.drift.form_drag = ws.drift.moment_drag = ws.drift.skin_drag = ws.drift.air_drag = ws.drift.coriolis = false;
   dynamics::World world(ws);
+  world.set_threads(threads);
   for (const auto& d : pack.bodies) world.add_body(d);
   const double dt = world.shortest_contact_duration(1.0) / 40.0;
   world.compute_forces(0.0);
@@ -237,11 +244,13 @@ void run(benchmark::State& state, Kind kind) {
   const dynamics::StepProfile p0 = world.profile();
   double contact_pairs = 0.0;
   const double cpu0 = thread_cpu_seconds();
+  const auto wall0 = std::chrono::steady_clock::now();
   for (auto _ : state) {
     world.step(dt);
     contact_pairs += static_cast<double>(world.contacts().size());
   }
-  const double cpu = thread_cpu_seconds() - cpu0;
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double cpu = threads > 1 ? wall : thread_cpu_seconds() - cpu0;
   const dynamics::StepProfile p1 = world.profile();
   if (!(world.max_speed() < 10.0)) {
     state.SkipWithError("the pack became unstable during timing");
@@ -281,6 +290,7 @@ void run(benchmark::State& state, Kind kind) {
   const double floe_steps = static_cast<double>(state.iterations()) * pack.floes;
   state.SetItemsProcessed(static_cast<std::int64_t>(floe_steps));
   state.counters["floes"] = pack.floes;
+  state.counters["threads"] = threads;
   state.counters["dt_ms"] = 1e3 * dt;
   state.counters["area_fraction"] = pack.area_fraction;
   state.counters["vertices"] = pack.mean_vertices;
@@ -303,18 +313,22 @@ void BM_DensePackContactOnly(benchmark::State& state) { run(state, Kind::dense_c
 
 }  // namespace
 
-// Fixed step counts (the set-up is not repeated to calibrate): about 1.5 million floe-steps per case.
-BENCHMARK(BM_DensePack)->Arg(1500)->Iterations(1000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DensePack)->Arg(15000)->Iterations(100)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DensePack)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DensePackSorted)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_FreeDrift)->Arg(1500)->Iterations(1000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_FreeDrift)->Arg(15000)->Iterations(100)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_FreeDrift)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
+// Fixed step counts (the set-up is not repeated to calibrate): about 1.5 million floe-steps per case. The second
+// argument is the thread count.
+BENCHMARK(BM_DensePack)->Args({1500, 1})->Iterations(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePack)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePack)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePack)->Args({15000, 2})->Iterations(100)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DensePack)->Args({150000, 2})->Iterations(10)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DensePackSorted)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FreeDrift)->Args({1500, 1})->Iterations(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FreeDrift)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FreeDrift)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
 
-BENCHMARK(BM_DensePackContactOnly)->Arg(1500)->Iterations(1000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DensePackContactOnly)->Arg(15000)->Iterations(100)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DensePackContactOnly)->Arg(150000)->Iterations(10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DensePackContactOnly)->Arg(1500000)->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnly)->Args({1500, 1})->Iterations(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnly)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnly)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnly)->Args({1500000, 1})->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnly)->Args({150000, 2})->Iterations(10)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

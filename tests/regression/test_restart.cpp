@@ -2,7 +2,7 @@
 // newest checkpoint each time ends bitwise where the uninterrupted run ends (every HDF5 dataset, every VTK file,
 // the final state); after every kill each completed frame and the newest checkpoint read back; bad checkpoints
 // and mismatched restarts are refused with exit code 2 before any output is touched; an unstable run leaves its
-// state for inspection.
+// state for inspection. And the thread count does not change a run: 2 threads give the 1-thread run bitwise.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -301,6 +301,33 @@ TEST(Restart, KilledFrozenSheetRunRestartsBitwise) {
   const Interrupted r = run_with_kills(args, base / "killed", 2, wall, 0.3, 7);
   EXPECT_GE(r.kills, 1);
   expect_same_run(base / "whole", base / "killed");
+  fs::remove_all(base);
+}
+
+TEST(Threads, TwoThreadsGiveTheOneThreadRunBitwise) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP: the step is serial";
+#endif
+  // The channel scene (contacts with friction history, every drift term, walls) and a frozen sheet breaking
+  // (bonds), each run with 1 and 2 threads: every dataset, VTK file and the final state must be the same bits.
+  const std::vector<std::vector<std::string>> scenes{
+      {"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=3", "--set", "output.interval=0.5"},
+      {"run", kSource + "/dem/scenes/uniaxial_compression.yaml", "--set", "ice_sheet.region=[0,0,60,60]", "--set",
+       "ice_sheet.cell_size=8", "--set", "ice_sheet.bonds.tensile_strength=1e5", "--set",
+       "ice_sheet.bonds.shear_strength=1e5", "--set", "floes.0.position=[-10,30]", "--set",
+       "floes.1.position=[70,30]", "--set", "run.duration=0.2", "--set", "output.interval=0.02"}};
+  const fs::path base = scratch("threads");
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    fs::remove_all(base);
+    fs::create_directories(base);
+    for (const char* t : {"1", "2"}) {
+      std::vector<std::string> a = scenes[k];
+      a.insert(a.end(), {"--threads", t, "-o", (base / t).string()});
+      ASSERT_EQ(run_to_end(a, base / (std::string(t) + ".log")), 0) << slurp(base / (std::string(t) + ".log"));
+    }
+    SCOPED_TRACE(scenes[k][1]);
+    expect_same_run(base / "1", base / "2");
+  }
   fs::remove_all(base);
 }
 

@@ -1,0 +1,15 @@
+// OpenMP for the step's loops, when the build has it (POLYFLOE_OMP_FOR expands to nothing otherwise, so the loops
+// stay plain serial loops and no unknown-pragma warning appears).
+#pragma once
+
+#ifdef _OPENMP
+#include <omp.h>
+#define POLYFLOE_PRAGMA(x) _Pragma(#x)
+// A parallel loop over independent iterations with `threads` threads, static chunks of 256 (iterations are cheap;
+// the partition does not change any result).
+#define POLYFLOE_OMP_FOR(threads) POLYFLOE_PRAGMA(omp parallel for schedule(static, 256) num_threads(threads) if (threads > 1))
+inline int polyfloe_thread_index() { return omp_get_thread_num(); }
+#else
+#define POLYFLOE_OMP_FOR(threads)
+inline int polyfloe_thread_index() { return 0; }
+#endif
