@@ -21,6 +21,13 @@
 
 namespace polyfloe::dynamics {
 
+// The fewest time steps per contact duration at which the step stays stable, with margin: the velocity-Verlet limit
+// of an undamped central Hertz impact is t_c / dt = 2.015, but corner contacts on elongated floes (small effective
+// mass, the tangential spring), damping and jammed packs (several contacts per floe) need up to 10 (measured:
+// tests/bench/bench_stability, docs/performance.md "Stability map"). The run guard stops a run whose stiffest
+// contact gets fewer; the scene reader refuses run.steps_per_contact below it.
+inline constexpr double kMinStepsPerContact = 10.0;
+
 struct WorldSettings {
   contact::ContactLawSettings contact;
   forcing::DriftSettings drift;

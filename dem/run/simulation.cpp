@@ -91,12 +91,11 @@ GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const 
 
 void check_contact_resolution(const dynamics::World& w, double dt) {
   std::ostringstream why;
-  constexpr double kMinStepsPerContact = 5.0;
   const dynamics::World::ContactResolution r = w.shortest_active_contact();
-  if (r.a >= 0 && r.duration < kMinStepsPerContact * dt) {
+  if (r.a >= 0 && r.duration < dynamics::kMinStepsPerContact * dt) {
     why << "the contact between bodies " << w.id(r.a) << " and " << w.id(r.b) << " at t = " << w.time() << " s (step "
         << w.step_count() << ") has an impact speed of about " << r.impact_speed << " m/s, so it lasts " << r.duration
-        << " s: only " << r.duration / dt << " time steps of dt = " << dt << " s (at least " << kMinStepsPerContact
+        << " s: only " << r.duration / dt << " time steps of dt = " << dt << " s (at least " << dynamics::kMinStepsPerContact
         << " are needed, 40 for accuracy). Set run.reference_speed to " << r.impact_speed
         << " (the automatic time step then resolves such impacts), or run.dt to " << r.duration / 40.0 << ".";
     throw InstabilityError(why.str());

@@ -41,7 +41,7 @@ using namespace detail;
 void read_run(MapReader m, TimeSettings& t) {
   m.number("duration", t.duration, positive("s"));
   m.number_or_auto("dt", t.dt, positive("s"));
-  m.number("steps_per_contact", t.steps_per_contact, at_least(5.0, "-"));
+  m.number("steps_per_contact", t.steps_per_contact, at_least(dynamics::kMinStepsPerContact, "-"));
   m.number_or_auto("reference_speed", t.reference_speed, positive("m/s"));
   m.finish();
 }

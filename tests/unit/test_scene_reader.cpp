@@ -350,8 +350,8 @@ TEST(SceneErrors, OutOfRangeSaysTheRangeAndUnit) {
   EXPECT_EQ(m, "t.yaml:3:17: key 'run.duration': -5 is outside the allowed range (0, inf) [s]");
   m = parse_error(std::string(kOneFloe) + "ice: {poisson_ratio: 0.5}\n");
   EXPECT_TRUE(contains(m, "key 'ice.poisson_ratio': 0.5 is outside the allowed range [0, 0.5) [-]")) << m;
-  m = parse_error(std::string(kOneFloe) + "run: {steps_per_contact: 4}\n");
-  EXPECT_TRUE(contains(m, "[5, inf) [-]")) << m;
+  m = parse_error(std::string(kOneFloe) + "run: {steps_per_contact: 9}\n");
+  EXPECT_TRUE(contains(m, "[10, inf) [-]")) << m;
   m = parse_error(std::string(kOneFloe) + "floe_field: {concentration: 0.8}\n");
   EXPECT_TRUE(contains(m, "key 'floe_field.concentration': 0.8 is outside the allowed range (0, 0.7] [-]")) << m;
   m = parse_error("floe_field:\n  size: {min: 10, max: 5}\n");
