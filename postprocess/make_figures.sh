@@ -3,13 +3,15 @@
 #   channel.png           the README picture, from a run of the default channel scene (~5 min);
 #   drift_quadrature.png  skin-drag torque error vs cost per quadrature rule, from tests/bench/bench_drift (~1 min),
 #                         with its data in docs/data/drift_quadrature.json;
-#   channel_geometry.png  the channel scene's walls, ice region and dimensions (seconds).
+#   channel_geometry.png  the channel scene's walls, ice region and dimensions (seconds);
+#   stability_map.png, speed_accuracy.png  from tests/bench/bench_stability (~9 min, one core), with their data in
+#                         docs/data/stability_map.json and step_cost.json (and drift_quadrature.json above).
 #   (The sweep figures come from scripts/sweep.sh and postprocess/plot_sweep.py: docs/validation.md.)
-#   bash postprocess/make_figures.sh [channel|drift|geometry]...   (default: all)
+#   bash postprocess/make_figures.sh [channel|drift|geometry|stability]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 which=("$@")
-[ ${#which[@]} -gt 0 ] || which=(channel drift geometry)
+[ ${#which[@]} -gt 0 ] || which=(channel drift geometry stability)
 for w in "${which[@]}"; do
   case "$w" in
     channel)
@@ -32,6 +34,14 @@ for w in "${which[@]}"; do
         --set output.vtk=false >/dev/null 2>&1
       /usr/bin/python3 postprocess/plot_channel_geometry.py results/channel_geometry -o docs/figures/channel_geometry.png
       ;;
-    *) echo "make_figures.sh: unknown figure '$w' (channel, drift, geometry)" >&2; exit 2 ;;
+    stability)
+      cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release >/dev/null
+      cmake --build build-bench --target bench_stability -j "$(nproc)"
+      build-bench/tests/bench_stability --only impacts --only packs -o docs/data/stability_map.json
+      build-bench/tests/bench_stability --only cost -o docs/data/step_cost.json
+      /usr/bin/python3 postprocess/plot_stability.py docs/data/stability_map.json docs/data/step_cost.json \
+        --quadrature docs/data/drift_quadrature.json --out docs/figures
+      ;;
+    *) echo "make_figures.sh: unknown figure '$w' (channel, drift, geometry, stability)" >&2; exit 2 ;;
   esac
 done

@@ -89,6 +89,9 @@ for b in rows("bench_narrow_phase.json"):
     print(f"  {b['run_name'].split('/min_time')[0]:<24} {b['ns_per_pair']:8.1f}")
 print("  step                     us/floe-step  contacts/floe  candidates/floe  narrow_only ns/floe  narrow_law ns/floe")
 for b in rows("bench_step.json"):
+    if "bytes_per_floe" in b:
+        print(f"  {b['run_name'].split('/iterations')[0]:<24} {b['bytes_per_floe']:12.0f}  bytes per floe (heap)")
+        continue
     print(f"  {b['run_name'].split('/iterations')[0]:<24} {b['us_per_floe_step']:12.3f}  {b['contacts_per_floe']:13.3f}"
           f"  {b['candidates_per_floe']:15.3f}  {b['narrow_only_ns']:19.0f}  {b['narrow_law_ns']:18.0f}")
 print("  drift                    ns/floe  torque error  force error  (label)")

@@ -10,6 +10,9 @@
 //   BM_DensePackSorted/150000  the same pack with the bodies stored in lattice (row-major) order, so that bodies
 //                      close in space are close in memory: what locality is worth.
 //   BM_FreeDrift/<N>   an open field at area fraction ~0.62 with random velocities (few contacts).
+//   BM_MemoryPerFloe/<N>  heap bytes held per floe by a warm World of the DensePack (its shapes included): glibc's
+//                      mallinfo2() before the pack is built and after the World is warm and the pack's body
+//                      descriptions are gone (counter bytes_per_floe); the time reported is meaningless.
 //   BM_DensePackContactOnly/<N>  the DensePack with every drift term off: the contact dynamics alone, what the
 //                      LAMMPS disk pack of scripts/bench_lammps.sh does (it has no drag); up to 1.5M floes.
 //
@@ -44,6 +47,7 @@
 //                     the steps, so the part of narrow_law that is geometry); ns_per_candidate: the same per pair
 #include <benchmark/benchmark.h>
 
+#include <malloc.h>
 #include <time.h>
 
 #include <algorithm>
@@ -51,6 +55,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -183,6 +188,36 @@ void BM_DensePackSorted(benchmark::State& state) { run(state, Kind::dense_sorted
 void BM_FreeDrift(benchmark::State& state) { run(state, Kind::free); }
 void BM_DensePackContactOnly(benchmark::State& state) { run(state, Kind::dense_contact); }
 
+void BM_MemoryPerFloe(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  double bytes = 0.0;
+  int floes = 0;
+  for (auto _ : state) {
+    auto heap = [] {
+      const struct mallinfo2 m = mallinfo2();
+      return static_cast<double>(m.uordblks + m.hblkhd);
+    };
+    const double before = heap();
+    std::optional<dynamics::World> world;
+    {
+      Pack pack = make_pack(n, PackSpec{}, 7u);
+      floes = pack.floes;
+      dynamics::WorldSettings ws;
+      ws.drift.ocean = forcing::make_field(forcing::FieldSpec::uniform({0.2, 0.05}));
+      ws.drift.wind = forcing::make_field(forcing::FieldSpec::uniform({8.0, 6.0}));
+      world.emplace(ws);
+      for (const auto& d : pack.bodies) world->add_body(d);
+      const double dt = world->shortest_contact_duration(1.0) / 40.0;
+      world->compute_forces(0.0);
+      for (int k = 0; k < 3; ++k) world->step(dt);
+    }  // the pack's descriptions are freed; the shapes live on in the World
+    bytes = heap() - before;
+    benchmark::DoNotOptimize(world->positions().data());
+  }
+  state.counters["floes"] = floes;
+  state.counters["bytes_per_floe"] = bytes / floes;
+}
+
 }  // namespace
 
 // Fixed step counts (the set-up is not repeated to calibrate): about 1.5 million floe-steps per case. The second
@@ -196,6 +231,9 @@ BENCHMARK(BM_DensePackSorted)->Args({150000, 1})->Iterations(10)->Unit(benchmark
 BENCHMARK(BM_FreeDrift)->Args({1500, 1})->Iterations(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FreeDrift)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FreeDrift)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
+
+BENCHMARK(BM_MemoryPerFloe)->Arg(15000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MemoryPerFloe)->Arg(150000)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_DensePackContactOnly)->Args({1500, 1})->Iterations(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackContactOnly)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
