@@ -86,5 +86,7 @@ run_one() {
 export -f run_one
 export OUT
 status=0
+# Runs go side by side, so each uses one thread (the step's threads would only compete for the same cores).
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 printf '%s\n' "${jobs_list[@]}" | xargs -P "$JOBS" -I{} bash -c 'run_one "$@"' _ {} || status=$?
 exit $status

@@ -39,6 +39,8 @@ run_one() {
   fi
 }
 export -f run_one
+# Runs go side by side, so each uses one thread (the step's threads would only compete for the same cores).
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 printf '%s\n' 0.1 0.5 1.0 1.5 | xargs -P "$JOBS" -I{} bash -c 'run_one "$@"' _ {} "${extra[@]}"
 mkdir -p "$FIG"
 /usr/bin/python3 postprocess/plot_uniaxial.py "$OUT"/sigma_0.1 "$OUT"/sigma_0.5 "$OUT"/sigma_1.0 "$OUT"/sigma_1.5 \

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/parallel.h"
 #include "geometry/polygon.h"
 #include "run/simulation.h"
 #include "scene/field_statistics.h"
@@ -43,7 +44,8 @@ Options:
   -o, --output DIR        output folder (default: results/<scene name>)
   --set KEY.PATH=VALUE    override a scene value, repeatable, e.g. --set run.duration=60
                           --set forcing.ocean.current=[0.5,0] --set floes.0.position=[10,0]
-  --threads N             worker threads of the step (OpenMP, default 1); the result is bitwise the same for any N
+  --threads N             worker threads of the step (OpenMP; default: the cores, or OMP_NUM_THREADS); the
+                          result is bitwise the same for any N
   --profile               print where the step time went
   --restart CKPT|DIR      continue an interrupted run from a checkpoint file, or from the newest checkpoint of
                           a run's output folder; the result is bitwise that of an uninterrupted run (same scene
@@ -58,7 +60,7 @@ struct Args {
   std::string scene;
   std::filesystem::path output;
   std::vector<std::string> overrides;
-  int threads = 1;
+  int threads = 0;  // 0 = polyfloe_default_threads()
   bool profile = false;
   std::filesystem::path restart;
 };
@@ -228,7 +230,7 @@ int main(int argc, char** argv) {
 
   run::RunOptions opt;
   opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
-  opt.threads = args.threads;
+  opt.threads = args.threads > 0 ? args.threads : std::clamp(polyfloe_default_threads(), 1, 1024);
   opt.interactive = isatty(fileno(stderr)) != 0;
   opt.profile = args.profile;
   opt.version = POLYFLOE_VERSION;
@@ -271,7 +273,8 @@ int main(int argc, char** argv) {
 
   try {
     std::cerr << "polyfloe: " << sc.name << ": " << sim->world().size() << " bodies, " << sc.time.duration
-              << " s simulated, dt = " << sim->dt() << " s -> " << opt.output_dir.string() << "\n";
+              << " s simulated, dt = " << sim->dt() << " s, " << opt.threads
+              << (opt.threads == 1 ? " thread" : " threads") << " -> " << opt.output_dir.string() << "\n";
     if (sc.floe_field && args.restart.empty()) std::cerr << "polyfloe: floe field: " << scene::to_string(field) << "\n";
     const run::RunSummary s = sim->run();
     std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";

@@ -9,7 +9,10 @@
 // the partition does not change any result).
 #define POLYFLOE_OMP_FOR(threads) POLYFLOE_PRAGMA(omp parallel for schedule(static, 256) num_threads(threads) if (threads > 1))
 inline int polyfloe_thread_index() { return omp_get_thread_num(); }
+// Threads a run uses unless told: what OpenMP would use (the cores, or OMP_NUM_THREADS).
+inline int polyfloe_default_threads() { return omp_get_max_threads(); }
 #else
 #define POLYFLOE_OMP_FOR(threads)
 inline int polyfloe_thread_index() { return 0; }
+inline int polyfloe_default_threads() { return 1; }
 #endif
