@@ -29,7 +29,7 @@ class SceneError : public std::runtime_error {
 struct TimeSettings {
   double duration = 300.0;            // simulated time [s], > 0
   std::optional<double> dt;           // fixed time step [s]; empty = automatic
-  double steps_per_contact = 40.0;    // automatic dt = shortest Hertz contact duration / this [-], >= 5
+  double steps_per_contact = 40.0;  // auto dt = shortest contact duration / this [-], >= dynamics::kMinStepsPerContact
   std::optional<double> reference_speed;  // impact speed for the automatic dt and the paper damping [m/s];
                                           // empty = max(1 m/s, steady free-drift speed)
 };
