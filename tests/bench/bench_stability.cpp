@@ -104,9 +104,21 @@ ImpactCase make_impact(std::mt19937_64& rng, double ratio) {
   const double lo = extent(a, 1, false) - extent(b0, 1, false), hi = extent(a, 1, true) - extent(b0, 1, true);
   const double lo_ok = std::min(lo, hi), hi_ok = std::max(lo, hi);
   const double y = lo_ok + (0.1 + 0.8 * u(rng)) * (hi_ok - lo_ok);
-  // Bisection on x: far = clear of A, near = overlapping.
-  double far = extent(a, 0, true) - extent(b0, 0, false) + 1.0, near = -extent(b0, 0, false);
+  // The first touch along -x: a scan in steps of 1/400 of the sweep finds an overlapping position (the y extents
+  // overlap, so one exists), then bisection between it and the last clear one.
+  const double x_clear = extent(a, 0, true) - extent(b0, 0, false) + 1.0;
+  const double x_past = extent(a, 0, false) - extent(b0, 0, true) - 1.0;
   contact::PlanarContact g;
+  double far = x_clear, near = x_clear;
+  for (int k = 1; k <= 400; ++k) {
+    const double x = x_clear + (x_past - x_clear) * k / 400.0;
+    if (contact::planar_overlap(a, placed(c.b, {x, y}), g)) {
+      near = x;
+      break;
+    }
+    far = x;
+  }
+  if (near == x_clear) return make_impact(rng, ratio);  // grazing miss at this resolution: draw another pair
   for (int k = 0; k < 200 && far - near > 1e-12; ++k) {
     const double mid = 0.5 * (far + near);
     const std::vector<Vec2> b = placed(c.b, {mid, y});
@@ -121,6 +133,7 @@ struct Outcome {
   double wa = 0.0, wb = 0.0;
   double energy_before = 0.0, energy_after = 0.0;
   bool finite = true;
+  bool touched = false;  // a contact happened during the run
 };
 
 struct ContactSetting {
@@ -157,6 +170,7 @@ Outcome run_impact(const ImpactCase& c, double youngs, const ContactSetting& cs,
   w.compute_forces(dt);
   for (int k = 0; k < steps; ++k) {
     w.step(dt);
+    o.touched = o.touched || !w.contacts().empty();
     if (!std::isfinite(w.kinetic_energy()) || w.max_speed() > 1e3 * speed) {
       o.finite = false;
       break;
@@ -240,10 +254,20 @@ int main(int argc, char** argv) {
       for (double E : youngs) {
         for (double r : ratios) {
           std::mt19937_64 rng(20261123u + static_cast<std::uint64_t>(r) * 7919u);
+          // Pairs whose reference run has a contact (all of them, as built; checked, so that no pair counts as stable
+          // for never touching).
           std::vector<ImpactCase> cases;
-          for (int s = 0; s < samples; ++s) cases.push_back(make_impact(rng, r));
           std::vector<Outcome> refs;
-          for (const ImpactCase& c : cases) refs.push_back(run_impact(c, E, cs, n_ref, speed));
+          while (static_cast<int>(cases.size()) < samples) {
+            const ImpactCase c = make_impact(rng, r);
+            const Outcome ref = run_impact(c, E, cs, n_ref, speed);
+            if (!ref.touched) {
+              std::fprintf(stderr, "a pair did not touch in its reference run; drawing another\n");
+              continue;
+            }
+            cases.push_back(c);
+            refs.push_back(ref);
+          }
           std::vector<double> p50, p90, worst_gain;
           std::vector<bool> stable;
           for (double n : ns) {
