@@ -20,17 +20,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def main(argv):
-    if len(argv) != 3:
-        sys.stderr.write(__doc__)
-        return 2
-    src, out = argv[1], argv[2]
-    try:
-        with open(src) as f:
-            data = json.load(f)
-    except (OSError, json.JSONDecodeError) as e:
-        sys.stderr.write(f"plot_drift_quadrature.py: cannot read {src}: {e}\n")
-        return 1
+def read_rows(src):
+    """{(field, rule): (ns_per_floe, torque_error, force_error, points_per_floe)} of BM_SkinDragQuadrature (medians
+    when repeated); raises OSError or ValueError (json.JSONDecodeError) when the file cannot be read."""
+    with open(src) as f:
+        data = json.load(f)
     rows = {}
     for b in data.get("benchmarks", []):
         if not b["name"].startswith("BM_SkinDragQuadrature") or "error_occurred" in b:
@@ -39,6 +33,19 @@ def main(argv):
             continue
         field, rule = b["label"].split()
         rows[(field, rule)] = (b["ns_per_floe"], b["torque_error"], b["force_error"], b["points_per_floe"])
+    return rows
+
+
+def main(argv):
+    if len(argv) != 3:
+        sys.stderr.write(__doc__)
+        return 2
+    src, out = argv[1], argv[2]
+    try:
+        rows = read_rows(src)
+    except (OSError, ValueError) as e:
+        sys.stderr.write(f"plot_drift_quadrature.py: cannot read {src}: {e}\n")
+        return 1
     if not rows:
         sys.stderr.write(f"plot_drift_quadrature.py: no BM_SkinDragQuadrature results in {src}\n")
         return 1

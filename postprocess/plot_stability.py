@@ -30,6 +30,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from plot_drift_quadrature import read_rows  # noqa: E402  (same folder)
 
 GUARD_FLOOR = 10.0  # dynamics::kMinStepsPerContact (dem/dynamics/world.h): the run guard floor
 DEFAULT_STEPS = 40.0
@@ -49,22 +50,27 @@ def load(paths):
 
 
 def quadrature_errors(path):
-    """{rule: torque error} for the sheared current (medians when repeated)."""
+    """{rule: torque error} for the sheared current."""
     try:
-        with open(path) as f:
-            data = json.load(f)
-    except (OSError, json.JSONDecodeError) as e:
+        rows = read_rows(path)
+    except (OSError, ValueError) as e:
         sys.exit(f"plot_stability.py: cannot read {path}: {e}")
-    out = {}
-    for b in data.get("benchmarks", []):
-        if not b["name"].startswith("BM_SkinDragQuadrature") or "error_occurred" in b:
-            continue
-        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
-            continue
-        field, rule = b["label"].split()
-        if field == "shear":
-            out[rule] = b["torque_error"]
-    return out
+    return {rule: r[1] for (field, rule), r in rows.items() if field == "shear"}
+
+
+def log_axes(ax, xlabel, ylabel, title, legend_loc):
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(fontsize=7, loc=legend_loc)
+
+
+def save(fig, out, name):
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, name), dpi=130)
+    print(f"wrote {os.path.join(out, name)}")
 
 
 def stability_map(d, out):
@@ -105,15 +111,9 @@ def stability_map(d, out):
             unstable = [x for x, s in zip(n, p["stable"]) if not s]
             ax2.scatter(unstable, [1e2] * len(unstable), marker="x", color=line.get_color(), s=40)
             ax2.axvline(p["guard_steps_per_contact"], color=line.get_color(), ls=":", lw=1)
-        ax2.set_xscale("log")
-        ax2.set_yscale("log")
-        ax2.set_xlabel("steps per contact t_c(1 m/s) / dt")
-        ax2.set_ylabel("kinetic energy at the end / after 200 steps")
-        ax2.set_title("(b) jammed packs, 2,500 floes (x: unstable)")
-        ax2.legend(fontsize=7, loc="upper right")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "stability_map.png"), dpi=130)
-    print(f"wrote {os.path.join(out, 'stability_map.png')}")
+        log_axes(ax2, "steps per contact t_c(1 m/s) / dt", "kinetic energy at the end / after 200 steps",
+                 "(b) jammed packs, 2,500 floes (x: unstable)", "upper right")
+    save(fig, out, "stability_map.png")
 
 
 def speed_accuracy(d, quad, out):
@@ -153,15 +153,9 @@ def speed_accuracy(d, quad, out):
     if DEFAULT_RULE in quad:
         ax.scatter([cost[DEFAULT_RULE] * DEFAULT_STEPS], [quad[DEFAULT_RULE]], marker="*", s=220, color="gold",
                    edgecolor="k", zorder=5)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("CPU per floe per contact duration [us] (1,500-floe jammed pack, one core)")
-    ax.set_ylabel("relative error against a converged reference")
-    ax.set_title("Speed against accuracy")
-    ax.legend(fontsize=7, loc="lower left")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "speed_accuracy.png"), dpi=130)
-    print(f"wrote {os.path.join(out, 'speed_accuracy.png')}")
+    log_axes(ax, "CPU per floe per contact duration [us] (1,500-floe jammed pack, one core)",
+             "relative error against a converged reference", "Speed against accuracy", "lower left")
+    save(fig, out, "speed_accuracy.png")
 
 
 def main():
