@@ -21,6 +21,7 @@
 #include "dynamics/parallel.h"
 #include "geometry/polygon.h"
 #include "run/simulation.h"
+#include "run/spatial_run.h"
 #include "scene/field_statistics.h"
 #include "scene/scene_reader.h"
 
@@ -182,6 +183,60 @@ int check(const scene::Scene& sc, const dynamics::World& world, const scene::Fie
   return run::kExitOk;
 }
 
+// A spatial scene (spatial: block): 6-DOF polyhedra, its own driver, no checkpoints.
+int run_spatial_scene(const Args& args, const scene::Scene& sc) {
+  std::optional<dynamics::SpatialWorld> world;
+  double dt = 0.0;
+  try {
+    if (!args.restart.empty())
+      throw scene::SceneError(args.scene + ": spatial scenes write no checkpoints, so --restart does not apply");
+    world.emplace(scene::build_spatial_world(sc));
+    dt = scene::time_step(sc, *world);
+  } catch (const scene::SceneError& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
+    return run::kExitBadInput;
+  }
+  if (args.command == "check") {
+    std::cout << scene::resolved_yaml(sc);
+    const double v = scene::reference_speed(sc);
+    std::cout << "\n# resolved:\n"
+              << "#   spatial bodies: " << world->size() << "\n"
+              << "#   reference impact speed: " << v << " m/s\n"
+              << "#   shortest contact duration at that speed: " << world->shortest_contact_duration(v) << " s\n"
+              << "#   time step: " << dt << " s" << (sc.time.dt ? " (fixed by the scene)" : " (automatic)") << "\n"
+              << "#   steps: " << static_cast<long long>(std::ceil(sc.time.duration / dt)) << "\n";
+    return run::kExitOk;
+  }
+  run::RunOptions opt;
+  opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
+  opt.version = POLYFLOE_VERSION;
+  if (const std::string why = unwritable_reason(opt.output_dir); !why.empty()) {
+    std::cerr << "polyfloe: error: output folder " << opt.output_dir.string() << " cannot be written: " << why
+              << "; choose another with -o DIR\n";
+    return run::kExitBadInput;
+  }
+  try {
+    std::cerr << "polyfloe: " << sc.name << ": " << world->size() << " spatial bodies, " << sc.time.duration
+              << " s simulated, dt = " << dt << " s, 1 thread -> " << opt.output_dir.string() << "\n";
+    const run::RunSummary s = run::run_spatial(sc, *world, opt);
+    std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n"
+              << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n";
+    if (sc.output.vtk)
+      std::cout << "  bodies.pvd" << (sc.output.contacts ? ", contacts.pvd" : "") << "  (open in ParaView)\n";
+    if (sc.output.hdf5) std::cout << "  results.h5                (time series; see docs/user-guide.md)\n";
+    return run::kExitOk;
+  } catch (const run::InstabilityError& e) {
+    std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
+    return run::kExitUnstable;
+  } catch (const std::exception& e) {
+    std::cerr << "\npolyfloe: error: " << e.what() << "\n";
+    return run::kExitFailure;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -208,6 +263,7 @@ int main(int argc, char** argv) {
   scene::FieldStatistics field;
   try {
     sc = scene::read_scene(args.scene, args.overrides);
+    if (sc.spatial) return run_spatial_scene(args, sc);
     world.emplace(scene::build_world(sc, &field));
     const double dt = scene::time_step(sc, *world);
     if (!(dt > 0.0) || !std::isfinite(dt))

@@ -17,6 +17,7 @@
 
 namespace polyfloe::dynamics {
 class World;
+class SpatialWorld;
 }
 
 namespace polyfloe::io {
@@ -65,6 +66,25 @@ class VtkSeriesWriter {
   PvdCollection floes_pvd_;
   PvdCollection contacts_pvd_;
   PvdCollection bonds_pvd_;
+};
+
+// VTK output of a spatial scene (dynamics/spatial_world.h):
+//   DIR/bodies.pvd, DIR/bodies/bodies_NNNNNN.vtp        every polyhedron, one polygon per face; cell data: id,
+//                                                      motion, velocity [m/s], angular_velocity [rad/s]
+//   DIR/contacts.pvd, DIR/contacts/contacts_NNNNNN.vtp  one vertex per contact (optional): normal, force [N],
+//                                                      depth [m], manifold_points
+class SpatialVtkSeriesWriter {
+ public:
+  SpatialVtkSeriesWriter(const std::filesystem::path& dir, bool write_contacts);
+  void write_frame(const dynamics::SpatialWorld& world);
+  int frames() const { return frames_; }
+
+ private:
+  std::filesystem::path dir_;
+  bool write_contacts_;
+  int frames_ = 0;
+  PvdCollection bodies_pvd_;
+  PvdCollection contacts_pvd_;
 };
 
 // A regular grid of cells in the plane z = 0: cell (j, i) spans x0 + [i, i+1] cell, y0 + [j, j+1] cell.

@@ -68,6 +68,11 @@ void add(dynamics::World& world, const BodyDesc& desc, const std::string& source
 
 double reference_speed(const Scene& scene) {
   if (scene.time.reference_speed) return *scene.time.reference_speed;
+  if (scene.spatial) {  // the fastest body at t = 0 (set run.reference_speed when gravity speeds bodies up)
+    double speed = 1.0;  // [m/s]
+    for (const SpatialBodySpec& b : scene.spatial->bodies) speed = std::max(speed, b.velocity.norm());
+    return speed;
+  }
   // The fastest of the current, and the skin/air free drift, at t = 0 at the explicit bodies and over the floe
   // field's region (5 x 5 points): impacts rarely exceed the speed floes drift at.
   const forcing::DriftSettings& d = scene.world.drift;

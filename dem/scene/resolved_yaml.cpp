@@ -95,40 +95,42 @@ std::string resolved_yaml(const Scene& s) {
     << "  force_model: " << (c.force_model == contact::ForceModel::gradient ? "gradient" : "centroid") << "\n"
     << "  broad_phase_cell: "
     << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n";
-  const forcing::DriftSettings& d = s.world.drift;
-  auto term = [&](bool enabled, double c) {
-    return std::string("{enabled: ") + on(enabled) + ", coefficient: " + fmt(c) + "}";
-  };
-  o << "forcing:\n"
-    << "  treatment: " << forcing::to_string(d.treatment) << "  # drag and Coriolis in the step\n"
-    << "  quadrature: " << forcing::to_string(d.quadrature) << "  # bottom and top drag integrals\n"
-    << "  ocean:\n"
-    << "    density: " << fmt(d.water_density) << "  # [kg/m^3]\n"
-    << "    field: " << field_yaml(s.ocean_field) << "  # [m], [m/s], [1/s], [s]\n"
-    << "    form_drag: " << term(d.form_drag, d.form_drag_coefficient) << "  # C_d^F [-]\n"
-    << "    moment_drag: " << term(d.moment_drag, d.moment_drag_coefficient) << "  # C_d^M [-]\n"
-    << "    skin_drag: " << term(d.skin_drag, d.skin_drag_coefficient) << "  # c_w [-]\n"
-    << "  air:\n"
-    << "    density: " << fmt(d.air_density) << "  # [kg/m^3]\n"
-    << "    field: " << field_yaml(s.wind_field) << "\n"
-    << "    drag: " << term(d.air_drag, d.air_drag_coefficient) << "  # c_a [-]\n"
-    << "  coriolis: {enabled: " << on(d.coriolis) << ", latitude: " << fmt(d.latitude)
-    << ", beta_plane: " << on(d.beta_plane) << ", reference_y: " << fmt(d.reference_y) << "}  # [deg], [m]\n";
-  if (s.bodies.empty()) o << "floes: []\n";
-  else o << "floes:\n";
-  for (const BodySpec& b : s.bodies) {
-    o << "  - polygon: [";
-    for (std::size_t i = 0; i < b.polygon.size(); ++i) o << (i ? ", " : "") << fmt(b.polygon[i]);
-    o << "]  # [m] body frame" << (b.source.where.empty() ? "" : ", from " + b.source.where) << "\n"
-      << "    position: " << fmt(b.position) << "  # [m] centroid\n"
-      << "    yaw: " << fmt(b.yaw) << "  # [rad]\n"
-      << "    velocity: " << fmt(b.velocity) << "  # [m/s]\n"
-      << "    angular_velocity: " << fmt(b.angular_velocity) << "  # [rad/s]\n"
-      << "    thickness: " << fmt(b.thickness) << "  # [m]\n"
-      << "    motion: " << dynamics::to_string(b.motion) << "\n";
-    if (b.id) o << "    id: " << *b.id << "\n";
-    o << "    external_force: " << fmt(b.external_force) << "  # [N]\n"
-      << "    external_torque: " << fmt(b.external_torque) << "  # [N m]\n";
+  if (!s.spatial) {  // spatial scenes have neither drift forcing nor floes
+    const forcing::DriftSettings& d = s.world.drift;
+    auto term = [&](bool enabled, double c) {
+      return std::string("{enabled: ") + on(enabled) + ", coefficient: " + fmt(c) + "}";
+    };
+    o << "forcing:\n"
+      << "  treatment: " << forcing::to_string(d.treatment) << "  # drag and Coriolis in the step\n"
+      << "  quadrature: " << forcing::to_string(d.quadrature) << "  # bottom and top drag integrals\n"
+      << "  ocean:\n"
+      << "    density: " << fmt(d.water_density) << "  # [kg/m^3]\n"
+      << "    field: " << field_yaml(s.ocean_field) << "  # [m], [m/s], [1/s], [s]\n"
+      << "    form_drag: " << term(d.form_drag, d.form_drag_coefficient) << "  # C_d^F [-]\n"
+      << "    moment_drag: " << term(d.moment_drag, d.moment_drag_coefficient) << "  # C_d^M [-]\n"
+      << "    skin_drag: " << term(d.skin_drag, d.skin_drag_coefficient) << "  # c_w [-]\n"
+      << "  air:\n"
+      << "    density: " << fmt(d.air_density) << "  # [kg/m^3]\n"
+      << "    field: " << field_yaml(s.wind_field) << "\n"
+      << "    drag: " << term(d.air_drag, d.air_drag_coefficient) << "  # c_a [-]\n"
+      << "  coriolis: {enabled: " << on(d.coriolis) << ", latitude: " << fmt(d.latitude)
+      << ", beta_plane: " << on(d.beta_plane) << ", reference_y: " << fmt(d.reference_y) << "}  # [deg], [m]\n";
+    if (s.bodies.empty()) o << "floes: []\n";
+    else o << "floes:\n";
+    for (const BodySpec& b : s.bodies) {
+      o << "  - polygon: [";
+      for (std::size_t i = 0; i < b.polygon.size(); ++i) o << (i ? ", " : "") << fmt(b.polygon[i]);
+      o << "]  # [m] body frame" << (b.source.where.empty() ? "" : ", from " + b.source.where) << "\n"
+        << "    position: " << fmt(b.position) << "  # [m] centroid\n"
+        << "    yaw: " << fmt(b.yaw) << "  # [rad]\n"
+        << "    velocity: " << fmt(b.velocity) << "  # [m/s]\n"
+        << "    angular_velocity: " << fmt(b.angular_velocity) << "  # [rad/s]\n"
+        << "    thickness: " << fmt(b.thickness) << "  # [m]\n"
+        << "    motion: " << dynamics::to_string(b.motion) << "\n";
+      if (b.id) o << "    id: " << *b.id << "\n";
+      o << "    external_force: " << fmt(b.external_force) << "  # [N]\n"
+        << "    external_torque: " << fmt(b.external_torque) << "  # [N m]\n";
+    }
   }
   if (const auto& f = s.floe_field) {
     o << "floe_field:\n"
@@ -162,6 +164,35 @@ std::string resolved_yaml(const Scene& s) {
         << "    friction_angle: " << fmt(b->friction_angle) << "  # [rad]\n"
         << "    points_per_face: " << b->points_per_face << "\n"
         << "    damping_ratio: " << fmt(b->damping_ratio) << "  # [-]\n";
+    }
+  }
+  if (const auto& sp = s.spatial) {
+    auto v3 = [](const geometry::Vec3& v) { return "[" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]"; };
+    o << "spatial:\n"
+      << "  gravity: " << v3(sp->gravity) << "  # [m/s^2]\n"
+      << "  buoyancy: " << on(sp->buoyancy) << "\n"
+      << "  water_level: " << fmt(sp->water_level) << "  # [m]\n"
+      << "  narrow_phase: " << dynamics::to_string(sp->narrow_phase) << "\n"
+      << "  contact_point: "
+      << (sp->contact_point == dynamics::ContactPointModel::manifold ? "manifold" : "witness") << "\n";
+    o << (sp->bodies.empty() ? "  bodies: []\n" : "  bodies:\n");
+    for (const SpatialBodySpec& b : sp->bodies) {
+      if (b.box) {
+        o << "    - box: " << v3(*b.box) << "  # [m] edge lengths";
+      } else {
+        o << "    - polygon: [";
+        for (std::size_t i = 0; i < b.polygon.size(); ++i) o << (i ? ", " : "") << fmt(b.polygon[i]);
+        o << "]  # [m] body frame";
+      }
+      o << (b.source.where.empty() ? "" : ", from " + b.source.where) << "\n";
+      o << "      thickness: " << fmt(b.thickness) << "  # [m] (polygon prisms)\n"
+        << "      position: " << v3(b.position) << "  # [m] centroid\n"
+        << "      rotation: {axis: " << v3(b.rotation_axis) << ", angle: " << fmt(b.rotation_angle) << "}  # [rad]\n"
+        << "      velocity: " << v3(b.velocity) << "  # [m/s]\n"
+        << "      angular_velocity: " << v3(b.angular_velocity) << "  # [rad/s]\n";
+      if (b.density) o << "      density: " << fmt(*b.density) << "  # [kg/m^3]\n";
+      o << "      motion: " << dynamics::to_string(b.motion) << "\n";
+      if (b.id) o << "      id: " << *b.id << "\n";
     }
   }
   if (const auto& ch = s.channel) {

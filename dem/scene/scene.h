@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/spatial_world.h"
 #include "dynamics/world.h"
 #include "forcing/analytic_fields.h"
 
@@ -147,6 +148,31 @@ struct IceSheetSpec {
   SourceRef source;
 };
 
+// A rigid convex body of a spatial scene (dynamics/spatial_world.h): a box, or a polygon extruded to a thickness.
+struct SpatialBodySpec {
+  std::optional<geometry::Vec3> box;  // edge lengths (lx, ly, lz) [m], each > 0
+  std::vector<Vec2> polygon;          // or a prism: the outline in the body frame [m] ...
+  double thickness = 1.0;             // ... extruded to this thickness, centred on z = 0 [m]
+  geometry::Vec3 position{0.0, 0.0, 0.0};      // centroid [m]
+  geometry::Vec3 rotation_axis{0.0, 0.0, 1.0}; // initial orientation: a turn about this axis (any length > 0) ...
+  double rotation_angle = 0.0;                 // ... by this angle [rad]
+  geometry::Vec3 velocity{0.0, 0.0, 0.0};          // [m/s]
+  geometry::Vec3 angular_velocity{0.0, 0.0, 0.0};  // world frame [rad/s]
+  std::optional<double> density;      // [kg/m^3]; empty = ice.density
+  dynamics::Motion motion = dynamics::Motion::dynamic;
+  std::optional<std::uint64_t> id;    // stable id; empty = next free
+  SourceRef source;
+};
+// A spatial scene: 6-DOF polyhedra instead of level floes (no drift forcing, no floe fields).
+struct SpatialSpec {
+  geometry::Vec3 gravity{0.0, 0.0, 0.0};  // [m/s^2]
+  bool buoyancy = false;                  // Archimedes' force below z = water_level
+  double water_level = 0.0;               // [m]
+  dynamics::SpatialNarrowPhase narrow_phase = dynamics::SpatialNarrowPhase::sat;
+  dynamics::ContactPointModel contact_point = dynamics::ContactPointModel::witness;
+  std::vector<SpatialBodySpec> bodies;
+  SourceRef source;
+};
 struct Scene {
   std::string name = "scene";
   std::string source_path;  // the YAML file
@@ -162,6 +188,7 @@ struct Scene {
   std::optional<FloeFieldSpec> floe_field;
   std::optional<IceSheetSpec> ice_sheet;
   std::optional<ChannelSpec> channel;
+  std::optional<SpatialSpec> spatial;  // present: a spatial scene (bodies are polyhedra; no floes, fields, forcing)
 };
 
 // The automatic time step with bonds: this fraction of the bonds' critical step (bonds/bond_set.h), itself a lower
@@ -182,5 +209,10 @@ double reference_speed(const Scene& scene);
 // Throws SceneError when run.duration would take more than kMaxSteps steps.
 inline constexpr double kMaxSteps = 1e12;
 double time_step(const Scene& scene, const dynamics::World& world);
+
+// The SpatialWorld of a spatial scene (scene.spatial set). Throws SceneError naming the body that is invalid.
+dynamics::SpatialWorld build_spatial_world(const Scene& scene);
+// Fixed, or SpatialWorld::shortest_contact_duration at the reference speed over steps_per_contact [s].
+double time_step(const Scene& scene, const dynamics::SpatialWorld& world);
 
 }  // namespace polyfloe::scene

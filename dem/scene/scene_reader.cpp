@@ -296,6 +296,89 @@ IceSheetSpec read_ice_sheet(MapReader m) {
   return s;
 }
 
+geometry::Vec3 to_vec3(const Context& ctx, const Field& f, const Range& r) {
+  const std::string what = "a list of 3 numbers [x, y, z] [" + std::string(r.unit) + "]";
+  const std::vector<Field> items = list_items(ctx, f, what);
+  if (items.size() != 3) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
+  return {to_number(ctx, items[0], r), to_number(ctx, items[1], r), to_number(ctx, items[2], r)};
+}
+
+// One spatial body: exactly one of box / polygon (+ thickness).
+SpatialBodySpec read_spatial_body(MapReader m) {
+  const Context& ctx = m.context();
+  SpatialBodySpec b;
+  b.source.where = ctx.where(m.self());
+  if (m.has("box") == m.has("polygon"))
+    ctx.fail(m.self(), m.has("box") ? "give only one of 'box' and 'polygon'"
+                                    : "missing the shape: give 'box: [lx, ly, lz]' or 'polygon' (with 'thickness')");
+  if (auto f = m.take("box")) {
+    b.box = to_vec3(ctx, *f, positive("m"));
+    const double lo = b.box->minCoeff(), hi = b.box->maxCoeff();
+    if (!(hi <= 1e9 * lo) || lo < geometry::kMinPolygonSize || hi > 1e30)
+      ctx.fail(*f, "box edge lengths must lie in [1e-60, 1e30] m and within a factor 1e9 of each other");
+  }
+  if (auto f = m.take("polygon")) b.polygon = to_polygon(ctx, *f);
+  m.number("thickness", b.thickness, positive("m"));
+  if (auto f = m.take("position")) b.position = to_vec3(ctx, *f, any("m"));
+  if (auto r = m.optional_block("rotation")) {
+    const Context& c = r->context();
+    if (auto f = r->take("axis")) b.rotation_axis = to_vec3(c, *f, any("-"));
+    if (!(b.rotation_axis.norm() > 0.0) || !std::isfinite(b.rotation_axis.norm()))
+      c.fail(r->self(), "rotation.axis must be a finite, non-zero vector");
+    if (r->has("angle") && r->has("angle_deg")) c.fail(r->self(), "give only one of 'angle' [rad] and 'angle_deg' [deg]");
+    r->number("angle", b.rotation_angle, any("rad"));
+    double deg = 0.0;
+    if (r->number("angle_deg", deg, any("deg"))) b.rotation_angle = deg * std::numbers::pi / 180.0;
+    r->finish();
+  }
+  if (auto f = m.take("velocity")) b.velocity = to_vec3(ctx, *f, any("m/s"));
+  if (auto f = m.take("angular_velocity")) b.angular_velocity = to_vec3(ctx, *f, any("rad/s"));
+  double density = 0.0;
+  if (m.number("density", density, positive("kg/m^3"))) b.density = density;
+  m.choice("motion", b.motion,
+           {{"dynamic", dynamics::Motion::dynamic},
+            {"fixed", dynamics::Motion::fixed},
+            {"kinematic", dynamics::Motion::kinematic}});
+  m.optional_unsigned64("id", b.id);
+  m.finish();
+  return b;
+}
+
+SpatialSpec read_spatial(MapReader m) {
+  const Context& ctx = m.context();
+  SpatialSpec s;
+  s.source.where = ctx.where(m.self());
+  if (auto f = m.take("gravity")) s.gravity = to_vec3(ctx, *f, any("m/s^2"));
+  m.boolean("buoyancy", s.buoyancy);
+  m.number("water_level", s.water_level, any("m"));
+  m.choice("narrow_phase", s.narrow_phase,
+           {{"sat", dynamics::SpatialNarrowPhase::sat},
+            {"gjk_epa_tiebreak", dynamics::SpatialNarrowPhase::gjk_epa_tiebreak},
+            {"gjk_epa", dynamics::SpatialNarrowPhase::gjk_epa},
+            {"mpr", dynamics::SpatialNarrowPhase::mpr}});
+  m.choice("contact_point", s.contact_point,
+           {{"witness", dynamics::ContactPointModel::witness},
+            {"manifold", dynamics::ContactPointModel::manifold}});
+  if (auto f = m.take("bodies")) {
+    if (!f->value.IsNull()) {
+      for (const Field& item : list_items(ctx, *f, "a list of bodies (each a block of keys)")) {
+        s.bodies.push_back(read_spatial_body(MapReader(ctx, item)));
+        for (std::size_t j = 0; j + 1 < s.bodies.size(); ++j) {
+          if (s.bodies.back().id && s.bodies[j].id == s.bodies.back().id)
+            ctx.fail({static_cast<const YAML::Node&>(item.value)["id"], YAML::Node(), join(item.path, "id")},
+                     "id " + std::to_string(*s.bodies.back().id) + " is already used by " + f->path + "." +
+                         std::to_string(j) + " (" + s.bodies[j].source.where + ")");
+        }
+      }
+    }
+  }
+  m.finish();
+  if (std::none_of(s.bodies.begin(), s.bodies.end(),
+                   [](const SpatialBodySpec& b) { return b.motion == dynamics::Motion::dynamic; }))
+    ctx.fail(m.self(), "a spatial scene needs at least one body with motion: dynamic under 'spatial.bodies'");
+  return s;
+}
+
 void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   MapReader top(ctx, {root, YAML::Node(), ""});
   top.file_name("name", s.name);
@@ -308,7 +391,18 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   if (auto m = top.optional_block("floe_field")) s.floe_field = read_floe_field(*m);
   if (auto m = top.optional_block("ice_sheet")) s.ice_sheet = read_ice_sheet(*m);
   if (auto m = top.optional_block("channel")) s.channel = read_channel(*m);
+  const bool has_forcing = top.has("forcing");
+  if (auto m = top.optional_block("spatial")) s.spatial = read_spatial(*m);
   top.finish();
+  if (s.spatial) {
+    // Spatial scenes have polyhedra, gravity and buoyancy; level-floe content would be silently ignored.
+    const char* planar_only = !s.bodies.empty() ? "floes" : s.floe_field ? "floe_field" : s.ice_sheet ? "ice_sheet"
+                              : s.channel ? "channel" : has_forcing ? "forcing" : nullptr;
+    if (planar_only)
+      throw SceneError(s.spatial->source.where + ": a spatial scene takes its bodies from 'spatial.bodies' and has "
+                       "no drift forcing: remove '" + planar_only + "' (or remove 'spatial' for a planar scene)");
+    return;
+  }
   check_forcing(ctx, top.self(), s);
 
   const bool dynamic_body = std::any_of(s.bodies.begin(), s.bodies.end(),

@@ -1,0 +1,176 @@
+// The spatial World: rigid convex polyhedra with six degrees of freedom (position, quaternion orientation, full
+// inertia tensor), for scenes that leave the horizontal plane (the cube striking a plate, tilted or stacked ice).
+//
+// Separate from the planar World on purpose: level floes keep their exact planar method and 3-DOF state and never
+// pay for the spatial machinery (one step function per mode, no per-body branching).
+//
+// One step (velocity Verlet, kick-drift-kick):
+//   kick     v += dt/2 F/m,  L += dt/2 tau            (L: angular momentum about the centre, world frame)
+//   drift    x += dt v,  q <- exp(dt w_mid) q, w_mid = R_mid I_body^-1 R_mid^T L at the mid-step orientation
+//            (fixed-point iterations: the free rotor keeps its energy to round-off over a step)
+//   forces   broad phase (grid on the xy boxes, then z), narrow phase (libccd behind contact/narrow_phase_ccd.h),
+//            manifold (contact/manifold.h), contact law (Hertz + damping + 3-D tangential spring capped by
+//            Coulomb), gravity and buoyancy (optional)
+//   kick     as above.
+#pragma once
+
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "contact/broad_phase.h"
+#include "contact/contact_cache.h"
+#include "contact/contact_law.h"
+#include "contact/manifold.h"
+#include "contact/narrow_phase_ccd.h"
+#include "contact/narrow_phase_sat3d.h"
+#include "dynamics/body.h"
+#include "geometry/polyhedron.h"
+
+namespace polyfloe::dynamics {
+
+using geometry::Mat3;
+using geometry::Vec3;
+using Quat = Eigen::Quaterniond;
+
+// How a pair's penetration depth, normal and point are measured.
+enum class SpatialNarrowPhase {
+  sat,               // exact separating axes (contact/narrow_phase_sat3d.h): no failure mode, energy-consistent point
+  gjk_epa_tiebreak,  // libccd GJK-EPA with the support ties broken (contact/narrow_phase_ccd.h)
+  gjk_epa,           // libccd GJK-EPA as it comes
+  mpr,               // libccd MPR
+};
+const char* to_string(SpatialNarrowPhase m);
+
+// Where the contact force of a pair acts.
+enum class ContactPointModel {
+  witness,   // one force at the narrow phase's point: sat's witness (the deepest vertex, or the centroid of
+             // vertices tied for deepest, or the closest points of two edges: W(depth) exactly, energy-consistent);
+             // libccd's own heuristic point
+  manifold,  // face clipping (contact/manifold.h): each point of the clipped patch a Hertz contact of its own depth
+             // along the reference face's normal (no rocking of a face resting on a face); edge-edge contacts keep
+             // the one point. Not exactly conservative (docs/validation.md: energy drift in the tumbling test)
+};
+
+struct SpatialSettings {
+  contact::ContactLawSettings contact;
+  SpatialNarrowPhase narrow_phase = SpatialNarrowPhase::sat;  // a libccd query that fails falls back to sat
+  contact::CcdSettings ccd;
+  ContactPointModel contact_point = ContactPointModel::witness;
+  Vec3 gravity{0.0, 0.0, 0.0};   // [m/s^2]; e.g. (0, 0, -9.81)
+  bool buoyancy = false;         // Archimedes' force at the centre of the submerged volume below z = water_level
+  double water_density = 1025.0; // [kg/m^3]
+  double water_level = 0.0;      // [m]
+};
+
+struct SpatialBodyDesc {
+  BodyId id = 0;
+  std::shared_ptr<const geometry::ConvexPolyhedron> shape;  // body frame, centroid at the origin
+  double density = 920.0;                  // [kg/m^3]
+  Vec3 position{0.0, 0.0, 0.0};            // centroid [m]
+  Quat orientation = Quat::Identity();     // body to world
+  Vec3 velocity{0.0, 0.0, 0.0};            // [m/s]
+  Vec3 angular_velocity{0.0, 0.0, 0.0};    // world frame [rad/s]
+  Motion motion = Motion::dynamic;
+};
+
+struct SpatialContact {
+  int a = 0, b = 0;               // body indices, id(a) < id(b); the normal points from a to b
+  Vec3 normal{0.0, 0.0, 1.0};
+  Vec3 point{0.0, 0.0, 0.0};      // where the force acts [m]
+  double depth = 0.0;             // [m]
+  int manifold_points = 0;        // 0 = the narrow phase's single point
+  double normal_force = 0.0;      // [N]
+  Vec3 force{0.0, 0.0, 0.0};      // total contact force on b [N]
+  double stored_energy = 0.0;     // 2/5 k_n d^2.5 [J]
+};
+
+// Failures of a libccd narrow phase met so far (each answered by sat instead).
+struct NarrowPhaseStats {
+  std::uint64_t queries = 0, primary_failures = 0;
+};
+
+class SpatialWorld {
+ public:
+  explicit SpatialWorld(const SpatialSettings& settings);
+
+  // Throws std::invalid_argument on a duplicate id, a missing shape or a non-finite or non-positive value.
+  int add_body(const SpatialBodyDesc& desc);
+  std::size_t size() const { return id_.size(); }
+
+  // Advance by dt [s]. Throws std::runtime_error naming the pair when neither narrow phase can measure a contact.
+  void step(double dt);
+  void compute_forces(double dt);
+
+  double time() const { return time_; }  // [s]
+  std::uint64_t step_count() const { return steps_; }
+
+  BodyId id(int i) const { return id_[i]; }
+  const geometry::ConvexPolyhedron& shape(int i) const { return *shape_[i]; }
+  Motion motion(int i) const { return motion_[i]; }
+  double mass(int i) const { return mass_[i]; }                          // [kg]
+  const Mat3& body_inertia(int i) const { return inertia_body_[i]; }     // [kg m^2], body frame
+  const Vec3& position(int i) const { return pos_[i]; }                  // [m]
+  const Quat& orientation(int i) const { return q_[i]; }
+  const Vec3& velocity(int i) const { return vel_[i]; }                  // [m/s]
+  Vec3 angular_velocity(int i) const;                                    // world frame [rad/s]
+  const Vec3& force(int i) const { return force_[i]; }                   // [N]
+  const Vec3& torque(int i) const { return torque_[i]; }                 // [N m]
+  std::span<const Vec3> world_vertices(int i) const {
+    return {world_.data() + vert_off_[i], static_cast<std::size_t>(vert_off_[i + 1] - vert_off_[i])};
+  }
+  const std::vector<SpatialContact>& contacts() const { return contacts_; }
+  const NarrowPhaseStats& narrow_phase_stats() const { return stats_; }
+
+  // --- diagnostics (dynamic bodies) ---
+  double kinetic_energy() const;       // translation + rotation [J]
+  double contact_energy() const;       // elastic energy stored in the active contacts [J]
+  Vec3 linear_momentum() const;        // [kg m/s]
+  Vec3 angular_momentum() const;       // about the origin [kg m^2/s]
+  // Shortest undamped Hertz impact among the bodies present at `speed` [m/s]: each dynamic body striking its like
+  // and a fixed body, at its least effective mass (a corner impact: 1 / (1/m + r_c^2 / I_min)) and with a full
+  // manifold's stiffness (kMaxManifoldPoints x k_n) [s].
+  double shortest_contact_duration(double speed) const;
+
+  const SpatialSettings& settings() const { return settings_; }
+
+ private:
+  void kick(double half_dt);
+  void drift(double dt);
+  void update_world_vertices(int i);
+  Mat3 world_inverse_inertia(int i) const;
+
+  SpatialSettings settings_;
+  contact::ContactLaw law_;
+  contact::GridBroadPhase broad_;
+  double time_ = 0.0;
+  std::uint64_t steps_ = 0;
+  bool forces_ready_ = false;
+  // hot state
+  std::vector<Vec3> pos_, vel_, ang_mom_, force_, torque_;
+  std::vector<Quat> q_;
+  std::vector<double> inv_mass_;
+  // cold data
+  std::vector<BodyId> id_;
+  std::unordered_map<BodyId, int> index_;
+  std::vector<std::shared_ptr<const geometry::ConvexPolyhedron>> shape_;
+  std::vector<double> mass_, radius_;
+  std::vector<Mat3> inertia_body_, inv_inertia_body_;
+  std::vector<Motion> motion_;
+  std::vector<std::uint8_t> is_dynamic_;
+  std::vector<Vec3> omega_kinematic_;  // prescribed angular velocity of kinematic bodies [rad/s]
+  // world-frame vertices and boxes
+  std::vector<int> vert_off_{0};
+  std::vector<Vec3> world_;
+  std::vector<geometry::Aabb> boxes_;
+  std::vector<double> z_lo_, z_hi_;
+  // contacts
+  std::vector<contact::CandidatePair> pairs_;
+  std::vector<SpatialContact> contacts_;
+  std::unordered_map<contact::PairKey, Vec3, contact::PairKeyHash> spring_, spring_next_;  // tangential springs [m]
+  NarrowPhaseStats stats_;
+};
+
+}  // namespace polyfloe::dynamics

@@ -1,0 +1,39 @@
+// HDF5 time series of a spatial run (dynamics/spatial_world.h), the same layout as a planar run's where it can be:
+//
+//   /time [T]                                  [s]
+//   /bodies/id [N] uint64, mass [N] [kg], inertia [N,3,3] [kg m^2] (body frame), motion [N] int8
+//          (0 dynamic, 1 fixed, 2 kinematic), vertex_offsets [N+1] int64, vertices [V,3] [m] (body frame)
+//   /state/position [T,N,3] [m], orientation [T,N,4] (w, x, y, z), velocity [T,N,3] [m/s],
+//          angular_velocity [T,N,3] [rad/s] (world frame)
+//   /diagnostics/kinetic_energy [T] [J], contact_energy [T] [J], contact_count [T], linear_momentum [T,3]
+//          [kg m/s], angular_momentum [T,3] [kg m^2/s] (about the origin), narrow_phase_failures [T] (queries the
+//          chosen method failed and MPR answered, cumulative)
+//
+// Root attributes as a planar run's (scene_path, scene_text, code_version, overrides, dt, created_by) plus
+// mode = "spatial". SWMR from the first frame, flushed per frame.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "io/hdf5_writer.h"
+
+namespace polyfloe::dynamics {
+class SpatialWorld;
+}
+
+namespace polyfloe::io {
+
+class SpatialHdf5Writer {
+ public:
+  SpatialHdf5Writer(const std::filesystem::path& file, const dynamics::SpatialWorld& world, const RunInfo& info);
+  ~SpatialHdf5Writer();
+  void write_frame(const dynamics::SpatialWorld& world);
+  int frames() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace polyfloe::io
