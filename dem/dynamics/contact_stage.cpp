@@ -20,17 +20,35 @@ void World::contact_forces(double dt) {
   const std::size_t np = pairs_.size();
   pair_results_.resize(np);
   const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
+  const bool gjk = settings_.narrow_phase == PlanarNarrowPhase::gjk_epa;
   const int np_int = static_cast<int>(np);
   POLYFLOE_OMP_FOR(threads_)
   for (int p = 0; p < np_int; ++p) {
     PairResult& r = pair_results_[static_cast<std::size_t>(p)];
     r.hit = false;
+    r.fallback = false;
     // Orient every pair by id so the stored spring has one meaning whatever the index order.
     int a = pairs_[p].a, b = pairs_[p].b;
     if (id_[a] > id_[b]) std::swap(a, b);
     if (bonds_ && bonds_->bonded(a, b)) continue;  // frozen together: the bond carries the load
     contact::PlanarContact& g = r.g;
-    if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g, gradient)) continue;
+    if (gjk) {
+      // The minimum translation at the witness midpoint; no overlap polygon, so the gradient force model sees the
+      // plain normal (its containment fallback).
+      const contact::Gjk2dContact m = contact::gjk_epa_2d(world_vertices(a), world_vertices(b));
+      if (m.status == contact::Gjk2dStatus::separated) continue;
+      if (m.status == contact::Gjk2dStatus::contact) {
+        g = contact::PlanarContact{};
+        g.normal = m.normal;
+        g.point = m.point;
+        g.depth = m.depth;
+      } else {
+        r.fallback = true;
+        if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g, gradient)) continue;
+      }
+    } else if (!contact::planar_overlap(world_vertices(a), world_vertices(b), g, gradient)) {
+      continue;
+    }
 
     const Vec2 t = geometry::perp_left(g.normal);
     const Vec2 ra = g.point - pos_[a], rb = g.point - pos_[b];  // centroid relative to each body
@@ -84,6 +102,7 @@ void World::contact_forces(double dt) {
   worst_q2_ = worst_v2_ = 0.0;
   worst_a_ = worst_b_ = -1;
   for (const PairResult& r : pair_results_) {
+    narrow_phase_failures_ += r.fallback;
     if (!r.hit) continue;
     if (r.q2 > worst_q2_) {
       worst_q2_ = r.q2;

@@ -278,6 +278,12 @@ void SpatialWorld::compute_forces(double dt) {
       s = k_t > 0.0 ? Vec3(-ft / k_t) : Vec3::Zero();
     }
     if (coef.mu > 0.0) spring_next_.emplace(key, s);
+    {
+      const double kk = coef.k_n * m.count, mm = 1.0 / inv_m;
+      const double rate = -k.normal.dot(vrel);
+      const double v2 = rate * rate + 0.8 * kk * k.depth * k.depth * std::sqrt(k.depth) / mm;
+      k.duration = contact::hertz_contact_duration(kk, mm, std::sqrt(v2));
+    }
     k.normal_force = normal_total;
     k.force = fn + ft;
     if (!finite(k.force) || !finite(k.point) || !finite(torque_a) || !finite(torque_b)) {

@@ -85,6 +85,9 @@ struct SpatialContact {
   double normal_force = 0.0;      // [N]
   Vec3 force{0.0, 0.0, 0.0};      // total contact force on b [N]
   double stored_energy = 0.0;     // 2/5 k_n d^2.5 [J]
+  // Hertz duration of this impact at the speed it implies (approach rate and stored energy,
+  // v^2 = d_dot^2 + (4/5) k d^2.5 / m*, k = points x k_n): a step that does not resolve it is unstable [s].
+  double duration = 0.0;
 };
 
 // Failures of a libccd narrow phase met so far (each answered by sat instead).

@@ -15,6 +15,7 @@
 #include "contact/broad_phase.h"
 #include "contact/contact_cache.h"
 #include "contact/contact_law.h"
+#include "contact/narrow_phase_gjk2d.h"
 #include "contact/narrow_phase_planar.h"
 #include "dynamics/body.h"
 #include "forcing/drift.h"
@@ -28,8 +29,16 @@ namespace polyfloe::dynamics {
 // contact gets fewer; the scene reader refuses run.steps_per_contact below it.
 inline constexpr double kMinStepsPerContact = 10.0;
 
+// How a pair of level floes is measured.
+enum class PlanarNarrowPhase {
+  exact,    // the overlap polygon (contact/narrow_phase_planar.h): area, centroid, chord normal, depth = area/chord
+  gjk_epa,  // the paper's method in the plane (contact/narrow_phase_gjk2d.h): the minimum translation's depth and
+            // normal at the witness midpoint, for comparison; a failed query is measured by the exact method
+};
+
 struct WorldSettings {
   contact::ContactLawSettings contact;
+  PlanarNarrowPhase narrow_phase = PlanarNarrowPhase::exact;
   forcing::DriftSettings drift;
   double broad_phase_cell = 0.0;  // grid cell size [m]; 0 = automatic
 };
@@ -129,6 +138,8 @@ class World {
   // --- contacts of the last force evaluation ---
   const std::vector<ContactRecord>& contacts() const { return contacts_; }
   const contact::ContactCache& contact_cache() const { return cache_; }
+  // Pairs the 2-D GJK-EPA narrow phase failed on (measured by the exact method instead), since the start.
+  std::uint64_t narrow_phase_failures() const { return narrow_phase_failures_; }
   contact::ContactCache& contact_cache() { return cache_; }
 
   // The shortest Hertz contact duration implied by the contacts of the last force evaluation: each contact's
@@ -236,6 +247,7 @@ class World {
     Vec2 f{0.0, 0.0};  // on b
     double tau_b = 0.0, tau_a = 0.0;
     double v2 = 0.0, q2 = 0.0;
+    bool fallback = false;  // the 2-D GJK-EPA failed on it: measured exactly
   };
   std::vector<PairResult> pair_results_;
   // Per-thread scratch of the drift stage: sample points and sampled fluid velocities of one body.
@@ -250,6 +262,7 @@ class World {
   double worst_v2_ = 0.0;
   int worst_a_ = -1, worst_b_ = -1;
   StepProfile profile_;
+  std::uint64_t narrow_phase_failures_ = 0;
 };
 
 }  // namespace polyfloe::dynamics

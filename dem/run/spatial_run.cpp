@@ -1,11 +1,14 @@
 #include "run/spatial_run.h"
 
+#include "scene/scene_reader.h"
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <optional>
 #include <sstream>
 
+#include "io/atomic_file.h"
 #include "io/spatial_hdf5_writer.h"
 #include "io/vtk_writer.h"
 
@@ -21,6 +24,14 @@ void check_stability(const dynamics::SpatialWorld& w, double dt) {
     }
   }
   for (const auto& c : w.contacts()) {
+    if (c.duration < dynamics::kMinStepsPerContact * dt) {
+      std::ostringstream m;
+      m << "the contact of bodies " << w.id(c.a) << " and " << w.id(c.b) << " at t = " << w.time()
+        << " s lasts about " << c.duration << " s, fewer than " << dynamics::kMinStepsPerContact
+        << " steps of dt = " << dt << " s: lower run.dt to " << c.duration / 40.0
+        << " s or less, or raise run.reference_speed (the automatic step divides the contact duration at that speed)";
+      throw InstabilityError(m.str());
+    }
     const double r = std::min(w.shape(c.a).equivalent_radius(), w.shape(c.b).equivalent_radius());
     if (c.depth > 0.25 * r) {
       std::ostringstream m;
@@ -39,6 +50,7 @@ RunSummary run_spatial(const scene::Scene& scene, dynamics::SpatialWorld& world,
   summary.dt = scene::time_step(scene, world);
   summary.output_dir = options.output_dir;
   fs::create_directories(options.output_dir);
+  io::write_file_atomic(options.output_dir / "scene.resolved.yaml", scene::resolved_yaml(scene));
   std::optional<io::SpatialVtkSeriesWriter> vtk;
   if (scene.output.vtk) vtk.emplace(options.output_dir, scene.output.contacts);
   std::optional<io::SpatialHdf5Writer> h5;

@@ -9,8 +9,9 @@
 
 namespace polyfloe::run {
 
-// Non-finite state, or an overlap deeper than a quarter of the smaller body's equivalent radius (the step does not
-// resolve the contact): throws InstabilityError naming the bodies, the time and the step to use.
+// Non-finite state, a contact resolved by fewer than dynamics::kMinStepsPerContact steps, or an overlap deeper than
+// a quarter of the smaller body's equivalent radius: throws InstabilityError naming the bodies, the time and the
+// step to use.
 void check_stability(const dynamics::SpatialWorld& world, double dt);
 
 RunSummary run_spatial(const scene::Scene& scene, dynamics::SpatialWorld& world, const RunOptions& options);

@@ -27,7 +27,7 @@ dynamics::SpatialWorld build_spatial_world(const Scene& scene) {
   settings.contact_point = sp.contact_point;
   settings.gravity = sp.gravity;
   settings.buoyancy = sp.buoyancy;
-  settings.water_density = scene.world.drift.water_density;
+  settings.water_density = sp.water_density;
   settings.water_level = sp.water_level;
   dynamics::SpatialWorld world(settings);
 

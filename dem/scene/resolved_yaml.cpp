@@ -92,6 +92,8 @@ std::string resolved_yaml(const Scene& s) {
     << "  friction: " << fmt(c.friction) << "  # [-] Coulomb coefficient\n"
     << "  damping_model: "
     << (c.damping == contact::DampingModel::paper ? "paper" : "speed_independent") << "\n"
+    << "  narrow_phase: " << (s.world.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa ? "gjk_epa" : "exact")
+    << "  # level floes: exact overlap polygon, or the paper's GJK-EPA (comparison)\n"
     << "  force_model: " << (c.force_model == contact::ForceModel::gradient ? "gradient" : "centroid") << "\n"
     << "  broad_phase_cell: "
     << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n";
@@ -172,6 +174,7 @@ std::string resolved_yaml(const Scene& s) {
       << "  gravity: " << v3(sp->gravity) << "  # [m/s^2]\n"
       << "  buoyancy: " << on(sp->buoyancy) << "\n"
       << "  water_level: " << fmt(sp->water_level) << "  # [m]\n"
+      << "  water_density: " << fmt(sp->water_density) << "  # [kg/m^3]\n"
       << "  narrow_phase: " << dynamics::to_string(sp->narrow_phase) << "\n"
       << "  contact_point: "
       << (sp->contact_point == dynamics::ContactPointModel::manifold ? "manifold" : "witness") << "\n";

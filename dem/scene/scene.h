@@ -168,6 +168,7 @@ struct SpatialSpec {
   geometry::Vec3 gravity{0.0, 0.0, 0.0};  // [m/s^2]
   bool buoyancy = false;                  // Archimedes' force below z = water_level
   double water_level = 0.0;               // [m]
+  double water_density = 1025.0;          // [kg/m^3]
   dynamics::SpatialNarrowPhase narrow_phase = dynamics::SpatialNarrowPhase::sat;
   dynamics::ContactPointModel contact_point = dynamics::ContactPointModel::witness;
   std::vector<SpatialBodySpec> bodies;

@@ -107,6 +107,8 @@ void read_contact(MapReader m, dynamics::WorldSettings& w) {
   m.choice("damping_model", w.contact.damping,
            {{"speed_independent", contact::DampingModel::speed_independent},
             {"paper", contact::DampingModel::paper}});
+  m.choice("narrow_phase", w.narrow_phase,
+           {{"exact", dynamics::PlanarNarrowPhase::exact}, {"gjk_epa", dynamics::PlanarNarrowPhase::gjk_epa}});
   m.choice("force_model", w.contact.force_model,
            {{"centroid", contact::ForceModel::centroid}, {"gradient", contact::ForceModel::gradient}});
   std::optional<double> cell;
@@ -351,6 +353,7 @@ SpatialSpec read_spatial(MapReader m) {
   if (auto f = m.take("gravity")) s.gravity = to_vec3(ctx, *f, any("m/s^2"));
   m.boolean("buoyancy", s.buoyancy);
   m.number("water_level", s.water_level, any("m"));
+  m.number("water_density", s.water_density, positive("kg/m^3"));
   m.choice("narrow_phase", s.narrow_phase,
            {{"sat", dynamics::SpatialNarrowPhase::sat},
             {"gjk_epa_tiebreak", dynamics::SpatialNarrowPhase::gjk_epa_tiebreak},

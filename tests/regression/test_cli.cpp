@@ -99,6 +99,40 @@ TEST(Cli, RunWritesOutputs) {
   fs::remove_all(out);
 }
 
+// A spatial scene runs through its own driver: the cube-plate impact, its outputs, and Eq. 6-7 at the end (the
+// cube is clear of the plate after 0.1 s; tolerance 1 % of v0 as tests/validation/test_cube_plate.cpp).
+TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_cube_plate";
+  fs::remove_all(out);
+  const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/cube_plate.yaml";
+  const Result r = polyfloe("run " + scene + " -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"bodies.pvd", "contacts.pvd", "results.h5", "scene.resolved.yaml"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const std::string py = "/usr/bin/python3 -c \"import h5py, math; f = h5py.File('" + (out / "results.h5").string() +
+                         "', 'r'); v = f['state/velocity'][-1, 1, 2]; w = f['state/angular_velocity'][-1, 1, 1]; "
+                         "print('%.6f %.6f' % (-v, abs(w) * math.sqrt(2)))\"";
+  FILE* p = popen(py.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  double v = 0.0, w = 0.0;
+  ASSERT_EQ(std::fscanf(p, "%lf %lf", &v, &w), 2);
+  pclose(p);
+  // Eq. 6-7 at alpha = 15 deg, e = 0.5: v'/v0 = 1/7, w' r / v0 = 9/7
+  EXPECT_NEAR(v, 1.0 / 7.0, 0.01);
+  EXPECT_NEAR(w, 9.0 / 7.0, 0.01);
+  fs::remove_all(out);
+}
+
+TEST(Cli, SpatialUnresolvedContactStopsWithExitThree) {
+  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_cube_plate_unstable";
+  const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/cube_plate.yaml";
+  const Result r = polyfloe("run " + scene + " -o " + out.string() + " --set run.dt=0.005");
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_NE(r.output.find("bodies 0 and 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("lower run.dt"), std::string::npos) << r.output;
+  fs::remove_all(out);
+}
+
 TEST(Cli, UnresolvedContactStopsWithExitThree) {
   // A 0.05 s step cannot resolve a ~0.03 s Hertz impact: the guard must stop the run, name the bodies and say
   // what to change, instead of letting the floes fly apart at ten times their impact speed.

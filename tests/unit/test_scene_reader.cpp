@@ -56,6 +56,32 @@ void expect_same_settings(const Scene& a, const Scene& b) {
   EXPECT_EQ(ca.friction, cb.friction);
   EXPECT_EQ(ca.damping, cb.damping);
   EXPECT_EQ(a.world.broad_phase_cell, b.world.broad_phase_cell);
+  EXPECT_EQ(a.world.narrow_phase, b.world.narrow_phase);
+  ASSERT_EQ(a.spatial.has_value(), b.spatial.has_value());
+  if (a.spatial) {
+    const auto &x = *a.spatial, &y = *b.spatial;
+    EXPECT_EQ(x.gravity, y.gravity);
+    EXPECT_EQ(x.buoyancy, y.buoyancy);
+    EXPECT_EQ(x.water_level, y.water_level);
+    EXPECT_EQ(x.water_density, y.water_density);
+    EXPECT_EQ(x.narrow_phase, y.narrow_phase);
+    EXPECT_EQ(x.contact_point, y.contact_point);
+    ASSERT_EQ(x.bodies.size(), y.bodies.size());
+    for (std::size_t i = 0; i < x.bodies.size(); ++i) {
+      const auto &p = x.bodies[i], &q = y.bodies[i];
+      EXPECT_EQ(p.box, q.box);
+      EXPECT_EQ(p.polygon, q.polygon);
+      EXPECT_EQ(p.thickness, q.thickness);
+      EXPECT_EQ(p.position, q.position);
+      EXPECT_EQ(p.rotation_axis, q.rotation_axis);
+      EXPECT_EQ(p.rotation_angle, q.rotation_angle);
+      EXPECT_EQ(p.velocity, q.velocity);
+      EXPECT_EQ(p.angular_velocity, q.angular_velocity);
+      EXPECT_EQ(p.density, q.density);
+      EXPECT_EQ(p.motion, q.motion);
+      EXPECT_EQ(p.id, q.id);
+    }
+  }
   const auto &da = a.world.drift, &db = b.world.drift;
   EXPECT_EQ(da.water_density, db.water_density);
   EXPECT_EQ(da.form_drag, db.form_drag);
@@ -227,6 +253,60 @@ TEST(SceneReader, TwoFloesSceneParses) {
   EXPECT_EQ(s.time.reference_speed, 2.0);
 }
 
+TEST(SceneReader, CubePlateSceneParsesAndReadsBack) {
+  const Scene s = read_scene(kSceneDir + "cube_plate.yaml", {});
+  ASSERT_TRUE(s.spatial.has_value());
+  EXPECT_TRUE(s.bodies.empty());
+  ASSERT_EQ(s.spatial->bodies.size(), 2u);
+  EXPECT_EQ(s.spatial->bodies[0].motion, dynamics::Motion::fixed);
+  EXPECT_EQ(s.spatial->bodies[1].box, geometry::Vec3(2.0, 2.0, 2.0));
+  EXPECT_NEAR(s.spatial->bodies[1].rotation_angle, 15.0 * std::numbers::pi / 180.0, 1e-15);
+  EXPECT_EQ(s.spatial->narrow_phase, dynamics::SpatialNarrowPhase::sat);
+  EXPECT_EQ(s.spatial->contact_point, dynamics::ContactPointModel::witness);
+  expect_round_trip(s);
+}
+
+TEST(SceneReader, SpatialKeysReadBack) {
+  const Scene s = parse_scene(
+      "contact: {narrow_phase: gjk_epa}\n"
+      "spatial:\n"
+      "  gravity: [0, 0, -9.81]\n"
+      "  buoyancy: true\n"
+      "  water_level: 0.5\n"
+      "  water_density: 1000\n"
+      "  narrow_phase: mpr\n"
+      "  contact_point: manifold\n"
+      "  bodies:\n"
+      "    - polygon: [[0, 0], [4, 0], [2, 3]]\n"
+      "      thickness: 1.5\n"
+      "      position: [1, 2, 3]\n"
+      "      rotation: {axis: [1, 1, 0], angle: 0.25}\n"
+      "      velocity: [0.5, 0, 0]\n"
+      "      angular_velocity: [0, 0.1, 0]\n"
+      "      density: 900\n"
+      "      id: 7\n"
+      "    - box: [10, 10, 1]\n"
+      "      position: [0, 0, -5]\n"
+      "      motion: fixed\n",
+      "spatial.yaml", {});
+  ASSERT_TRUE(s.spatial.has_value());
+  EXPECT_EQ(s.world.narrow_phase, dynamics::PlanarNarrowPhase::gjk_epa);
+  EXPECT_EQ(s.spatial->gravity, geometry::Vec3(0.0, 0.0, -9.81));
+  EXPECT_TRUE(s.spatial->buoyancy);
+  EXPECT_EQ(s.spatial->narrow_phase, dynamics::SpatialNarrowPhase::mpr);
+  EXPECT_EQ(s.spatial->contact_point, dynamics::ContactPointModel::manifold);
+  EXPECT_EQ(s.spatial->bodies[0].density, 900.0);
+  EXPECT_EQ(s.spatial->bodies[0].id, 7u);
+  EXPECT_EQ(s.spatial->bodies[0].polygon.size(), 3u);
+  expect_round_trip(s);
+  // The world: ids as given, then the next free; the prism's mass from its density.
+  const auto w = build_spatial_world(s);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w.id(0), 7u);
+  EXPECT_EQ(w.id(1), 0u);
+  EXPECT_NEAR(w.mass(0), 900.0 * 6.0 * 1.5, 1e-9);
+}
+
 TEST(SceneReader, ExplicitBodyKeys) {
   const Scene s = parse_scene(
       "floes:\n"
@@ -282,7 +362,7 @@ TEST(SceneErrors, UnknownKeyNamesLineAndAllowedKeys) {
                                     "  restitution: 0.5\n"
                                     "  restitutoin: 0.4\n");
   EXPECT_TRUE(starts_with(m, "t.yaml:5:3: unknown key 'contact.restitutoin'; allowed in 'contact': restitution, "
-                             "friction, damping_model, force_model, broad_phase_cell"))
+                             "friction, damping_model, narrow_phase, force_model, broad_phase_cell"))
       << m;
   const std::string top = parse_error(std::string(kOneFloe) + "flooes: []\n");
   EXPECT_TRUE(starts_with(top, "t.yaml:3:1: unknown key 'flooes'; allowed at the top level: name, run, ")) << top;
