@@ -74,12 +74,15 @@ RunSummary run_spatial(const scene::Scene& scene, dynamics::SpatialWorld& world,
   frame();
   const auto total = static_cast<std::uint64_t>(std::ceil(scene.time.duration / dt - 1e-9));
   double next_frame = scene.output.interval;
+  double last_frame = world.time();
   for (std::uint64_t k = 1; k <= total; ++k) {
     world.step(dt);
     check_stability(world, dt);
-    if (world.time() >= next_frame - 0.5 * dt || k == total) {
+    // on the schedule, and the end state unless a frame was written in the last step
+    if (world.time() >= next_frame - 0.5 * dt || (k == total && world.time() - last_frame > 1.5 * dt)) {
       frame();
-      next_frame += scene.output.interval;
+      last_frame = world.time();
+      while (next_frame <= world.time() + 0.5 * dt) next_frame += scene.output.interval;
     }
   }
   summary.steps = world.step_count();
