@@ -1,5 +1,6 @@
 #include "contact/narrow_phase_sat3d.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -7,18 +8,49 @@ namespace polyfloe::contact {
 
 namespace {
 
-struct Extent {
-  double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
-};
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
-Extent project(std::span<const Vec3> v, const Vec3& n) {
-  Extent e;
-  for (const Vec3& x : v) {
-    const double d = n.dot(x);
-    e.lo = std::min(e.lo, d);
-    e.hi = std::max(e.hi, d);
+// The overlap of the two projections on n (any length: the overlap is in units of |n|), min(max_A - min_B,
+// max_B - min_A), and which side is the shallower (`b_beyond`: B lies along +n of A). Scanning only widens the
+// extents, so the overlap only grows: the scan stops as soon as it reaches `stop` (this axis cannot be the least).
+// Vertices are taken from both ends of the list inwards (0, N-1, 1, N-2, ...): a prism's bottom and top rings are
+// then both met at once, and most axes stop after a vertex or two of each body.
+// `centres`: centre of B minus centre of A, which breaks an exact tie of the two sides (B's projection centred
+// inside A's).
+// `stop2`: the square of the stopping overlap (in units of |n|: no square root per axis).
+double overlap_on(std::span<const Vec3> a, std::span<const Vec3> b, const Vec3& n, const Vec3& centres, double stop2,
+                  bool& b_beyond) {
+  double alo = kInf, ahi = -kInf, blo = kInf, bhi = -kInf;
+  const std::size_t na = a.size(), nb = b.size(), m = std::max(na, nb);
+  auto spread = [](std::size_t i, std::size_t size) { return (i & 1) ? size - 1 - i / 2 : i / 2; };
+  for (std::size_t i = 0; i < m; ++i) {
+    if (i < na) {
+      const double d = n.dot(a[spread(i, na)]);
+      alo = std::min(alo, d);
+      ahi = std::max(ahi, d);
+    }
+    if (i < nb) {
+      const double d = n.dot(b[spread(i, nb)]);
+      blo = std::min(blo, d);
+      bhi = std::max(bhi, d);
+    }
+    const double o = std::min(ahi - blo, bhi - alo);
+    if (o > 0.0 && o * o >= stop2) return kInf;
   }
-  return e;
+  const double fwd = ahi - blo, back = bhi - alo;
+  b_beyond = fwd < back || (fwd == back && n.dot(centres) >= 0.0);
+  return std::min(fwd, back);
+}
+
+// top - min over `v` of n . x, stopping once it reaches `stop` (same scan order as above).
+double face_overlap(std::span<const Vec3> v, const Vec3& n, double top, double stop) {
+  double lo = kInf;
+  const std::size_t nv = v.size();
+  for (std::size_t i = 0; i < nv; ++i) {
+    lo = std::min(lo, n.dot(v[(i & 1) ? nv - 1 - i / 2 : i / 2]));
+    if (top - lo >= stop) return stop;
+  }
+  return top - lo;
 }
 
 // Closest points of segments p0-p1 and q0-q1; returns their midpoint.
@@ -72,41 +104,45 @@ SatContact sat_penetration(const geometry::ConvexPolyhedron& a, const Mat3& rot_
   for (const auto& f : a.faces()) {
     ++out.axes;
     const Vec3 n = rot_a * f.normal;
-    const double top = n.dot(world_a[f.loop[0]]);
-    double lo = std::numeric_limits<double>::infinity();
-    for (const Vec3& y : world_b) lo = std::min(lo, n.dot(y));
-    const double o = top - lo;
+    const double o = face_overlap(world_b, n, n.dot(world_a[f.loop[0]]), best);
     if (o <= 0.0) return out;
     if (o < best) best = o, best_n = n, feature = SatFeature::face_a;
   }
   for (const auto& f : b.faces()) {
     ++out.axes;
     const Vec3 n = rot_b * f.normal;  // out of B, towards A: the normal from A to B is -n
-    const double top = n.dot(world_b[f.loop[0]]);
-    double lo = std::numeric_limits<double>::infinity();
-    for (const Vec3& x : world_a) lo = std::min(lo, n.dot(x));
-    const double o = top - lo;
+    const double o = face_overlap(world_a, n, n.dot(world_b[f.loop[0]]), best);
     if (o <= 0.0) return out;
     if (o < best) best = o, best_n = -n, feature = SatFeature::face_b;
   }
   // Edge x edge axes; a face axis wins ties (a tiny relative margin keeps the choice stable on flat contacts).
   const double margin = 1e-12 * (a.circumradius() + b.circumradius());
+  // B's edge directions in the world frame, once (on the stack for up to kMaxDirections of them).
+  constexpr std::size_t kMaxDirections = 128;
+  std::array<Vec3, kMaxDirections> b_dirs;
+  const auto& bd = b.edge_directions();
+  const bool b_cached = bd.size() <= kMaxDirections;
+  if (b_cached) {
+    for (std::size_t j = 0; j < bd.size(); ++j) b_dirs[j] = rot_b * bd[j];
+  }
   for (const Vec3& da : a.edge_directions()) {
     const Vec3 ua = rot_a * da;
-    for (const Vec3& db : b.edge_directions()) {
-      const Vec3 ub = rot_b * db;
-      Vec3 n = ua.cross(ub);
-      const double len = n.norm();
-      if (len < 1e-9) continue;  // parallel edges: their plane's normal is among the face axes
+    for (std::size_t j = 0; j < bd.size(); ++j) {
+      const Vec3 ub = b_cached ? b_dirs[j] : Vec3(rot_b * bd[j]);
+      const Vec3 n = ua.cross(ub);  // not normalised: overlaps below are in units of |n|
+      const double len2 = n.squaredNorm();
+      if (len2 < 1e-18) continue;  // parallel edges: their plane's normal is among the face axes
       ++out.axes;
-      n /= len;
-      if (n.dot(centre_b - centre_a) < 0.0) n = -n;
-      const Extent pa = project(world_a, n), pb = project(world_b, n);
-      const double o = std::min(pa.hi - pb.lo, pb.hi - pa.lo);
-      if (o <= 0.0) return out;
+      bool b_beyond = true;
+      const double stop = best - margin;
+      const double o_raw = overlap_on(world_a, world_b, n, centre_b - centre_a, stop * stop * len2, b_beyond);
+      if (o_raw <= 0.0) return out;
+      if (o_raw == kInf) continue;
+      const double len = std::sqrt(len2);
+      const double o = o_raw / len;
       if (o < best - margin) {
         best = o;
-        best_n = pa.hi - pb.lo <= pb.hi - pa.lo ? n : Vec3(-n);
+        best_n = b_beyond ? Vec3(n / len) : Vec3(-n / len);
         feature = SatFeature::edge_edge;
         ea_dir = ua;
         eb_dir = ub;
