@@ -6,12 +6,15 @@
 #   channel_geometry.png  the channel scene's walls, ice region and dimensions (seconds);
 #   stability_map.png, speed_accuracy.png  from tests/bench/bench_stability (~9 min, one core), with their data in
 #                         docs/data/stability_map.json and step_cost.json (and drift_quadrature.json above).
+#   cube_plate.png        the paper's Fig. 3: tests/bench/bench_cube_plate (~10 s), data docs/data/cube_plate.json;
+#   failure_map.png       contact methods' failures and cost: tests/bench/bench_failure_map, data
+#                         docs/data/failure_map.json.
 #   (The sweep figures come from scripts/sweep.sh and postprocess/plot_sweep.py: docs/validation.md.)
-#   bash postprocess/make_figures.sh [channel|drift|geometry|stability]...   (default: all)
+#   bash postprocess/make_figures.sh [channel|drift|geometry|stability|cube_plate|failure_map]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 which=("$@")
-[ ${#which[@]} -gt 0 ] || which=(channel drift geometry stability)
+[ ${#which[@]} -gt 0 ] || which=(channel drift geometry stability cube_plate failure_map)
 for w in "${which[@]}"; do
   case "$w" in
     channel)
@@ -42,6 +45,19 @@ for w in "${which[@]}"; do
       /usr/bin/python3 postprocess/plot_stability.py docs/data/stability_map.json docs/data/step_cost.json \
         --quadrature docs/data/drift_quadrature.json --out docs/figures
       ;;
-    *) echo "make_figures.sh: unknown figure '$w' (channel, drift, geometry, stability)" >&2; exit 2 ;;
+    cube_plate)
+      cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release >/dev/null
+      cmake --build build-bench --target bench_cube_plate -j "$(nproc)"
+      build-bench/tests/bench_cube_plate -o docs/data/cube_plate.json
+      /usr/bin/python3 postprocess/plot_cube_plate.py docs/data/cube_plate.json -o docs/figures/cube_plate.png
+      ;;
+    failure_map)
+      cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release >/dev/null
+      cmake --build build-bench --target bench_failure_map -j "$(nproc)"
+      build-bench/tests/bench_failure_map -o docs/data/failure_map.json
+      /usr/bin/python3 postprocess/plot_failure_map.py docs/data/failure_map.json -o docs/figures/failure_map.png
+      ;;
+    *) echo "make_figures.sh: unknown figure '$w' (channel, drift, geometry, stability, cube_plate, failure_map)" >&2
+       exit 2 ;;
   esac
 done

@@ -1,9 +1,11 @@
 // The one door to libccd (GJK-EPA and MPR on convex polyhedra): the only file that includes <ccd/ccd.h> is
 // narrow_phase_ccd.cpp.
 //
-// libccd 2.1 has failure modes on level floes (../docs/validation.md "Failure map"): with both prisms spanning the same
-// z-range the support points tie in z, and EPA can exit as "touching" with depth ~0 and a NaN or arbitrary normal;
-// its EPA loop has no iteration cap; its contact point is a heuristic. This adapter
+// libccd 2.1 has failure modes on level floes (docs/validation.md, "Failure map of the contact methods"): with both
+// prisms spanning the same z-range the support points tie, and EPA can exit as "touching" with depth ~0 and an
+// arbitrary normal; its GJK can call a few overlapping pairs separated (no check of the answer sees that: the
+// spatial world confirms every separation exactly); its EPA loop has no iteration cap; its contact point is a
+// heuristic; MPR's depth is not the minimum translation. This adapter
 //   - asserts at build time that libccd is built in double precision,
 //   - checks every return code and every returned number (NaN, infinite, non-unit normal, negative depth),
 //   - bounds EPA: after `max_support_calls` support evaluations the support functions freeze (return the vertex
@@ -17,7 +19,8 @@
 // Details of the adapter (narrow_phase_ccd.cpp):
 //   - libccd sees normalised coordinates (x - o) / L, o and L the centre and half-diagonal of the pair's joint
 //     bounding box, so its hard-coded absolute epsilon (DBL_EPSILON) acts relative to the pair's size. Without
-//     this, plain gjk_epa misses ~44% of 1 mm - 10 cm overlaps of 5-100 m level floes; with it, 0.1-0.5%.
+//     this, plain gjk_epa misses ~44% of 1 mm - 10 cm overlaps of 5-100 m level floes; with it ~1.4% of them fail
+//     (the zero-depth exit below) and ~2e-5 are reported separated.
 //   - Sign: libccd's `dir` is the point of A - B nearest the origin (normalised), the translation of B that
 //     separates; `normal` is that direction, A to B.
 //   - Tie-break: vertices within 1e-9 L of the maximum along the search direction tie; A takes the one farthest
@@ -26,9 +29,9 @@
 //     step then either stops (a nearest element through that vertex fails the expansion test: distance 0) or
 //     replaces elements not through it by elements through it, so the loop ends within the polytope's face count.
 //     The same bound caps MPR's refinement loop (which libccd does not cap either): "MPR iteration bound reached".
-//   - Touching: depth below libccd's own zero (depth^2 < DBL_EPSILON in normalised units, depth < 1.5e-8 L), where
-//     libccd leaves the direction arbitrary (EPA) or zero (MPR), is reported as separated. Plain EPA's false
-//     "touching" exits on overlapping level floes therefore read as separated (a miss, not a failure).
+//   - Zero depth: an intersection with depth below libccd's own zero (depth^2 < DBL_EPSILON in normalised units,
+//     depth < 1.5e-8 L), where libccd leaves the direction arbitrary (EPA) or zero (MPR), is reported as failed: it
+//     is a true touch or EPA's false exit on overlapping level floes, and the answer cannot tell them apart.
 //   - A contact must be consistent: its depth equals the bodies' overlap along its normal (the support of A - B)
 //     within the method's tolerance x L; else failed. This catches a polytope that stopped short, and MPR's false
 //     intersections on separated level floes (~0.05-0.4%: depth = the gap, normal from B to A).

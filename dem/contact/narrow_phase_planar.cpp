@@ -176,6 +176,11 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   out.chord = len;
   out.normal = chord / len;
   out.depth = out.area / len;
+  // A sliver thinner than the round-off of the coordinates it was computed from (the pair's distance from the world
+  // origin, the overlap's from `origin`, its own size) is a touch that round-off opened up (a vertex exactly on an
+  // edge gave 1e-17 m slivers: tests/unit/test_contact_failure_modes.cpp): no contact.
+  const double coords = std::max({origin.cwiseAbs().maxCoeff(), p0.cwiseAbs().maxCoeff(), scale});
+  if (!(out.depth > 64.0 * std::numeric_limits<double>::epsilon() * coords)) return false;
   if (!with_gradient) return true;
   // Gradient terms: the moment of the ∂A part (averaged with minus the ∂B part) and the sliding crossings.
   double m_a = 0.0, m_b = 0.0;

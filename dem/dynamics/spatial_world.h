@@ -38,7 +38,8 @@ using Quat = Eigen::Quaterniond;
 // How a pair's penetration depth, normal and point are measured.
 enum class SpatialNarrowPhase {
   sat,               // exact separating axes (contact/narrow_phase_sat3d.h): no failure mode, energy-consistent point
-  gjk_epa_tiebreak,  // libccd GJK-EPA with the support ties broken (contact/narrow_phase_ccd.h)
+  gjk_epa_tiebreak,  // libccd GJK-EPA with the support ties broken (contact/narrow_phase_ccd.h); a failed query or
+                     // a "separated" that sat finds overlapping is answered by sat
   gjk_epa,           // libccd GJK-EPA as it comes
   mpr,               // libccd MPR
 };
@@ -90,7 +91,8 @@ struct SpatialContact {
   double duration = 0.0;
 };
 
-// Failures of a libccd narrow phase met so far (each answered by sat instead).
+// Failures of a libccd narrow phase met so far, each answered by sat instead: queries it reported as failed, and
+// "separated" verdicts that sat found overlapping (every libccd separation is confirmed by sat).
 struct NarrowPhaseStats {
   std::uint64_t queries = 0, primary_failures = 0;
 };

@@ -241,13 +241,13 @@ class World {
   // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
   struct PairResult {
     bool hit = false;
+    bool fallback = false;  // the 2-D GJK-EPA failed on it: measured exactly (beside `hit`: no growth in size)
     int a = 0, b = 0;  // ordered by id
     contact::PlanarContact g;
     contact::ContactForce cf;
     Vec2 f{0.0, 0.0};  // on b
     double tau_b = 0.0, tau_a = 0.0;
     double v2 = 0.0, q2 = 0.0;
-    bool fallback = false;  // the 2-D GJK-EPA failed on it: measured exactly
   };
   std::vector<PairResult> pair_results_;
   // Per-thread scratch of the drift stage: sample points and sampled fluid velocities of one body.
