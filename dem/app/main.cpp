@@ -183,6 +183,21 @@ int check(const scene::Scene& sc, const dynamics::World& world, const scene::Fie
   return run::kExitOk;
 }
 
+// Runs `body` (a run and its report; returns the exit code) and turns what it throws into exit codes: 3 for an
+// unstable run, 1 for anything else.
+template <class F>
+int guarded_run(F&& body) {
+  try {
+    return body();
+  } catch (const run::InstabilityError& e) {
+    std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
+    return run::kExitUnstable;
+  } catch (const std::exception& e) {
+    std::cerr << "\npolyfloe: error: " << e.what() << "\n";
+    return run::kExitFailure;
+  }
+}
+
 // A spatial scene (spatial: block): 6-DOF polyhedra, its own driver, no checkpoints.
 int run_spatial_scene(const Args& args, const scene::Scene& sc) {
   std::optional<dynamics::SpatialWorld> world;
@@ -218,7 +233,7 @@ int run_spatial_scene(const Args& args, const scene::Scene& sc) {
               << "; choose another with -o DIR\n";
     return run::kExitBadInput;
   }
-  try {
+  return guarded_run([&] {
     std::cerr << "polyfloe: " << sc.name << ": " << world->size() << " spatial bodies, " << sc.time.duration
               << " s simulated, dt = " << dt << " s, 1 thread -> " << opt.output_dir.string() << "\n";
     const run::RunSummary s = run::run_spatial(sc, *world, opt);
@@ -228,13 +243,7 @@ int run_spatial_scene(const Args& args, const scene::Scene& sc) {
       std::cout << "  bodies.pvd" << (sc.output.contacts ? ", contacts.pvd" : "") << "  (open in ParaView)\n";
     if (sc.output.hdf5) std::cout << "  results.h5                (time series; see docs/user-guide.md)\n";
     return run::kExitOk;
-  } catch (const run::InstabilityError& e) {
-    std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
-    return run::kExitUnstable;
-  } catch (const std::exception& e) {
-    std::cerr << "\npolyfloe: error: " << e.what() << "\n";
-    return run::kExitFailure;
-  }
+  });
 }
 
 }  // namespace
@@ -327,7 +336,7 @@ int main(int argc, char** argv) {
     return run::kExitFailure;
   }
 
-  try {
+  return guarded_run([&] {
     std::cerr << "polyfloe: " << sc.name << ": " << sim->world().size() << " bodies, " << sc.time.duration
               << " s simulated, dt = " << sim->dt() << " s, " << opt.threads
               << (opt.threads == 1 ? " thread" : " threads") << " -> " << opt.output_dir.string() << "\n";
@@ -351,11 +360,5 @@ int main(int argc, char** argv) {
     }
     if (sc.output.hdf5) std::cout << "  results.h5               (time series; see docs/user-guide.md)\n";
     return run::kExitOk;
-  } catch (const run::InstabilityError& e) {
-    std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
-    return run::kExitUnstable;
-  } catch (const std::exception& e) {
-    std::cerr << "\npolyfloe: error: " << e.what() << "\n";
-    return run::kExitFailure;
-  }
+  });
 }

@@ -37,6 +37,15 @@ const std::filesystem::path& with_parent_folder(const std::filesystem::path& pat
 
 }  // namespace
 
+void write_run_attributes(hdf5::Group& root, const RunInfo& info) {
+  root.set_attribute("created_by", "PolyFloe");
+  root.set_attribute("code_version", info.version);
+  root.set_attribute("scene_path", info.scene_path);
+  root.set_attribute("scene_text", info.scene_text);
+  root.set_attribute("overrides", info.overrides);
+  root.set_attribute("dt", info.dt);
+}
+
 struct Hdf5Writer::Impl {
   hdf5::File file;
   std::uint64_t bodies = 0;
@@ -65,12 +74,7 @@ struct Hdf5Writer::Impl {
       throw IoError("HDF5 output " + path.string() + ": water density must be positive");
     }
     auto& root = file.root();
-    root.set_attribute("created_by", "PolyFloe");
-    root.set_attribute("code_version", info.version);
-    root.set_attribute("scene_path", info.scene_path);
-    root.set_attribute("scene_text", info.scene_text);
-    root.set_attribute("overrides", info.overrides);
-    root.set_attribute("dt", info.dt);
+    write_run_attributes(root, info);
     root.set_attribute("water_density", water_density);
 
     const auto n = static_cast<int>(bodies);

@@ -44,6 +44,10 @@ struct RunInfo {
   double dt = 0.0;         // time step [s]
 };
 
+// The root attributes every results file carries: created_by = "PolyFloe", code_version, scene_path, scene_text,
+// overrides, dt.
+void write_run_attributes(hdf5::Group& root, const RunInfo& info);
+
 // A scalar series the driver adds to /diagnostics/<group>/<name>, one value per frame.
 struct ExtraSeries {
   std::string group;        // e.g. "channel"

@@ -37,13 +37,8 @@ struct SpatialHdf5Writer::Impl {
   Impl(const std::filesystem::path& path, const dynamics::SpatialWorld& world, const RunInfo& info)
       : file(path, hdf5::File::Mode::truncate), bodies(world.size()) {
     auto& root = file.root();
-    root.set_attribute("created_by", "PolyFloe");
+    write_run_attributes(root, info);
     root.set_attribute("mode", "spatial");
-    root.set_attribute("code_version", info.version);
-    root.set_attribute("scene_path", info.scene_path);
-    root.set_attribute("scene_text", info.scene_text);
-    root.set_attribute("overrides", info.overrides);
-    root.set_attribute("dt", info.dt);
     const auto n = static_cast<int>(bodies);
     std::vector<std::uint64_t> ids(bodies);
     std::vector<double> mass(bodies), inertia(9 * bodies), verts;

@@ -75,6 +75,7 @@
 #include "contact/narrow_phase_planar.h"
 #include "contact/narrow_phase_sat3d.h"
 #include "geometry/polygon.h"
+#include "contact_methods.h"
 #include "geometry/polyhedron.h"
 #include "test_support.h"
 
@@ -422,77 +423,23 @@ Case touching_case(int n, std::uint64_t seed) {
 
 // ---- Methods ----
 
-enum Method { kPlanar, kGjk2d, kCcdEpa, kCcdTie, kCcdMpr, kSat, kMethods };
+using tsupport::kCcdEpa;
+using tsupport::kCcdMpr;
+using tsupport::kCcdTie;
+using tsupport::kGjk2d;
+using tsupport::kPlanar;
+using tsupport::kSat;
+constexpr int kMethods = tsupport::kContactMethods;
 const char* kMethodName[kMethods] = {"planar", "gjk2d", "ccd_epa", "ccd_tie", "ccd_mpr", "sat"};
 const char* kMethodLabel[kMethods] = {"exact planar (area/chord)", "own 2-D GJK-EPA", "libccd GJK-EPA",
                                       "libccd GJK-EPA tie-break", "libccd MPR", "exact 3-D SAT"};
-bool is_planar(int m) { return m == kPlanar || m == kGjk2d; }
+bool is_planar(int m) { return tsupport::is_planar_method(m); }
 
-enum class Status { separated, contact, failed };
-struct Result {
-  Status status = Status::separated;
-  double depth = 0.0;
-  Vec3 normal{0.0, 0.0, 0.0};
-  Vec3 point{0.0, 0.0, 0.0};
-  const char* reason = "";
-};
-
-const Mat3 kIdentity = Mat3::Identity();
-
-contact::CcdMethod ccd_method(int m) {
-  return m == kCcdEpa ? contact::CcdMethod::gjk_epa
-                      : m == kCcdTie ? contact::CcdMethod::gjk_epa_tiebreak : contact::CcdMethod::mpr;
-}
+using Status = tsupport::MethodStatus;
+using Result = tsupport::MethodResult;
 
 Result run(int m, const Pair& p) {
-  Result r;
-  switch (m) {
-    case kPlanar: {
-      contact::PlanarContact c;
-      if (contact::planar_overlap(p.a, p.b, c)) {
-        r.status = Status::contact;
-        r.depth = c.depth;
-        r.normal = Vec3(c.normal.x(), c.normal.y(), 0.0);
-        r.point = Vec3(c.point.x(), c.point.y(), 0.0);
-      }
-      break;
-    }
-    case kGjk2d: {
-      const contact::Gjk2dContact c = contact::gjk_epa_2d(p.a, p.b);
-      r.status = c.status == contact::Gjk2dStatus::contact  ? Status::contact
-                 : c.status == contact::Gjk2dStatus::failed ? Status::failed
-                                                            : Status::separated;
-      r.depth = c.depth;
-      r.normal = Vec3(c.normal.x(), c.normal.y(), 0.0);
-      r.point = Vec3(c.point.x(), c.point.y(), 0.0);
-      r.reason = c.reason;
-      break;
-    }
-    case kCcdEpa:
-    case kCcdTie:
-    case kCcdMpr: {
-      const contact::CcdContact c = contact::ccd_penetration(p.a3, p.b3, ccd_method(m));
-      r.status = c.status == contact::CcdStatus::contact  ? Status::contact
-                 : c.status == contact::CcdStatus::failed ? Status::failed
-                                                          : Status::separated;
-      r.depth = c.depth;
-      r.normal = c.normal;
-      r.point = c.point;
-      r.reason = c.reason;
-      break;
-    }
-    default: {
-      const contact::SatContact c = contact::sat_penetration(*p.sa, kIdentity, p.a3, p.ca, *p.sb, kIdentity, p.b3,
-                                                             p.cb);
-      if (c.hit) {
-        r.status = Status::contact;
-        r.depth = c.depth;
-        r.normal = c.normal;
-        r.point = c.point;
-      }
-    }
-  }
-  return r;
+  return tsupport::run_contact_method(m, {p.a, p.b, p.a3, p.b3, p.sa.get(), p.sb.get(), p.ca, p.cb});
 }
 
 // One timed pass over the pairs [ns per pair]; the results are summed into g_sink.
@@ -507,33 +454,10 @@ double timed(const std::vector<Pair>& pairs, F&& f) {
 }
 
 double timed_pass(int m, const std::vector<Pair>& pairs) {
-  switch (m) {
-    case kPlanar:
-      return timed(pairs, [](const Pair& p) {
-        contact::PlanarContact c;
-        return contact::planar_overlap(p.a, p.b, c) ? c.depth : -1.0;
-      });
-    case kGjk2d:
-      return timed(pairs, [](const Pair& p) {
-        const contact::Gjk2dContact c = contact::gjk_epa_2d(p.a, p.b);
-        return c.depth + static_cast<double>(c.status);
-      });
-    case kCcdEpa:
-    case kCcdTie:
-    case kCcdMpr: {
-      const contact::CcdMethod cm = ccd_method(m);
-      return timed(pairs, [cm](const Pair& p) {
-        const contact::CcdContact c = contact::ccd_penetration(p.a3, p.b3, cm);
-        return c.depth + static_cast<double>(c.status);
-      });
-    }
-    default:
-      return timed(pairs, [](const Pair& p) {
-        const contact::SatContact c =
-            contact::sat_penetration(*p.sa, kIdentity, p.a3, p.ca, *p.sb, kIdentity, p.b3, p.cb);
-        return c.hit ? c.depth : -1.0;
-      });
-  }
+  return timed(pairs, [m](const Pair& p) {
+    const Result r = run(m, p);
+    return r.depth + static_cast<double>(r.status);
+  });
 }
 
 // ---- Statistics ----
@@ -552,14 +476,7 @@ struct Stats {
   int first_nonfinite = -1, first_missed = -1, first_false = -1;
 };
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(pos);
-  const double f = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
-}
+using tsupport::percentile;
 
 void classify(int m, const Pair& p, int index, const Result& r, Stats& s) {
   const bool planar = is_planar(m);

@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "contact/narrow_phase_planar.h"
+#include "contact_methods.h"
 #include "dense_pack.h"
 #include "dynamics/world.h"
 #include "forcing/analytic_fields.h"
@@ -191,14 +192,7 @@ double energy_norm_error(const dynamics::World& w, const Outcome& o, const Outco
   return std::sqrt(e / (2.0 * o.energy_before));  // sum m |v0|^2 = 2 KE0
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(pos);
-  const double f = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
-}
+using tsupport::percentile;
 
 std::string json_array(const std::vector<double>& v) {
   std::string s = "[";

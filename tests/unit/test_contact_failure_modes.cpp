@@ -29,6 +29,7 @@
 #include "contact/narrow_phase_gjk2d.h"
 #include "contact/narrow_phase_planar.h"
 #include "contact/narrow_phase_sat3d.h"
+#include "contact_methods.h"
 #include "dynamics/spatial_world.h"
 #include "geometry/polygon.h"
 #include "geometry/polyhedron.h"
@@ -191,14 +192,8 @@ Bodies bodies(const Case& c) {
   return s;
 }
 
-enum class Status { separated, contact, failed };
-struct Result {
-  Status status = Status::separated;
-  double depth = 0.0;
-  Vec3 normal{0.0, 0.0, 0.0};
-  Vec3 point{0.0, 0.0, 0.0};
-  std::string reason;
-};
+using Status = tsupport::MethodStatus;
+using Result = tsupport::MethodResult;
 
 struct Method {
   const char* name;
@@ -207,52 +202,25 @@ struct Method {
   std::function<Result(const Case&, const Bodies&)> run;
 };
 
-Result from_ccd(const contact::CcdContact& c) {
-  return {c.status == contact::CcdStatus::contact  ? Status::contact
-          : c.status == contact::CcdStatus::failed ? Status::failed
-                                                   : Status::separated,
-          c.depth, c.normal, c.point, c.reason};
-}
-
 std::vector<Method> methods() {
-  auto ccd = [](contact::CcdMethod m) {
-    return [m](const Case&, const Bodies& s) { return from_ccd(contact::ccd_penetration(s.a3, s.b3, m)); };
+  auto method = [](int m) {
+    return [m](const Case& c, const Bodies& s) {
+      return tsupport::run_contact_method(m, {c.a, c.b, s.a3, s.b3, s.sa.get(), s.sb.get(), s.ca, s.cb});
+    };
   };
   return {
-      {"planar", true, true,
-       [](const Case& c, const Bodies&) {
-         Result r;
-         contact::PlanarContact g;
-         if (contact::planar_overlap(c.a, c.b, g))
-           r = {Status::contact, g.depth, Vec3(g.normal.x(), g.normal.y(), 0.0), Vec3(g.point.x(), g.point.y(), 0.0),
-                ""};
-         return r;
-       }},
-      {"gjk2d", true, true,
-       [](const Case& c, const Bodies&) {
-         const contact::Gjk2dContact g = contact::gjk_epa_2d(c.a, c.b);
-         return Result{g.status == contact::Gjk2dStatus::contact  ? Status::contact
-                       : g.status == contact::Gjk2dStatus::failed ? Status::failed
-                                                                  : Status::separated,
-                       g.depth, Vec3(g.normal.x(), g.normal.y(), 0.0), Vec3(g.point.x(), g.point.y(), 0.0), g.reason};
-       }},
-      {"ccd_gjk_epa", false, false, ccd(contact::CcdMethod::gjk_epa)},
-      {"ccd_gjk_epa_tiebreak", false, false, ccd(contact::CcdMethod::gjk_epa_tiebreak)},
-      {"ccd_mpr", false, false, ccd(contact::CcdMethod::mpr)},
-      {"sat", true, false,
-       [](const Case&, const Bodies& s) {
-         const Mat3 id = Mat3::Identity();
-         const contact::SatContact g = contact::sat_penetration(*s.sa, id, s.a3, s.ca, *s.sb, id, s.b3, s.cb);
-         Result r;
-         if (g.hit) r = {Status::contact, g.depth, g.normal, g.point, ""};
-         return r;
-       }},
+      {"planar", true, true, method(tsupport::kPlanar)},
+      {"gjk2d", true, true, method(tsupport::kGjk2d)},
+      {"ccd_gjk_epa", false, false, method(tsupport::kCcdEpa)},
+      {"ccd_gjk_epa_tiebreak", false, false, method(tsupport::kCcdTie)},
+      {"ccd_mpr", false, false, method(tsupport::kCcdMpr)},
+      {"sat", true, false, method(tsupport::kSat)},
   };
 }
 
 void expect_well_formed(const Result& r, const std::string& what) {
   if (r.status == Status::failed) {
-    EXPECT_FALSE(r.reason.empty()) << what << ": a failure without a reason";
+    EXPECT_NE(*r.reason, '\0') << what << ": a failure without a reason";
     return;
   }
   if (r.status == Status::separated) return;
