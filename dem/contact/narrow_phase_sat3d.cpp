@@ -92,6 +92,22 @@ int supporting_edge(const geometry::ConvexPolyhedron& s, std::span<const Vec3> w
 
 }  // namespace
 
+double least_face_overlap(const geometry::ConvexPolyhedron& a, const Mat3& rot_a, std::span<const Vec3> world_a,
+                          const geometry::ConvexPolyhedron& b, const Mat3& rot_b, std::span<const Vec3> world_b) {
+  double best = kInf;
+  for (const auto& f : a.faces()) {
+    const Vec3 n = rot_a * f.normal;
+    best = std::min(best, face_overlap(world_b, n, n.dot(world_a[f.loop[0]]), best));
+    if (best <= 0.0) return best;
+  }
+  for (const auto& f : b.faces()) {
+    const Vec3 n = rot_b * f.normal;
+    best = std::min(best, face_overlap(world_a, n, n.dot(world_b[f.loop[0]]), best));
+    if (best <= 0.0) return best;
+  }
+  return best;
+}
+
 SatContact sat_penetration(const geometry::ConvexPolyhedron& a, const Mat3& rot_a, std::span<const Vec3> world_a,
                            const Vec3& centre_a, const geometry::ConvexPolyhedron& b, const Mat3& rot_b,
                            std::span<const Vec3> world_b, const Vec3& centre_b) {

@@ -35,4 +35,11 @@ SatContact sat_penetration(const geometry::ConvexPolyhedron& a, const Mat3& rot_
                            const Vec3& centre_a, const geometry::ConvexPolyhedron& b, const Mat3& rot_b,
                            std::span<const Vec3> world_b, const Vec3& centre_b);
 
+// The least overlap over the face axes of both bodies alone (no edge x edge axes) [m]; <= 0: separated. An upper
+// bound of the penetration depth, and equal to it for two prisms extruded along one axis (level floes), whose
+// Minkowski difference has only such faces. Checks another method's depth: one deeper than this is not the
+// minimum translation.
+double least_face_overlap(const geometry::ConvexPolyhedron& a, const Mat3& rot_a, std::span<const Vec3> world_a,
+                          const geometry::ConvexPolyhedron& b, const Mat3& rot_b, std::span<const Vec3> world_b);
+
 }  // namespace polyfloe::contact

@@ -191,8 +191,16 @@ void SpatialWorld::compute_forces(double dt) {
         // map), which no check of its answer can see: every separation is confirmed exactly, a miss counted.
         c = exact();
         if (c.hit) ++stats_.primary_failures;
+      } else if (r.depth > contact::least_face_overlap(*shape_[a], rot_a, world_vertices(a), *shape_[b], rot_b,
+                                                       world_vertices(b)) +
+                                 1e-9 * (shape_[a]->circumradius() + shape_[b]->circumradius())) {
+        // Deeper than a face axis allows: not the minimum translation (MPR's portal depth, up to 81 % too deep on
+        // vertex-into-vertex floes in the failure map; for prisms the face axes are every Minkowski face, so the
+        // check is exact for floes): sat answers.
+        ++stats_.primary_failures;
+        c = exact();
       } else {
-        c.hit = r.status == contact::CcdStatus::contact && r.depth > 0.0;
+        c.hit = r.depth > 0.0;
         c.depth = r.depth;
         c.normal = r.normal;
         c.point = r.point;

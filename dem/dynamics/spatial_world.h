@@ -91,8 +91,9 @@ struct SpatialContact {
   double duration = 0.0;
 };
 
-// Failures of a libccd narrow phase met so far, each answered by sat instead: queries it reported as failed, and
-// "separated" verdicts that sat found overlapping (every libccd separation is confirmed by sat).
+// Failures of a libccd narrow phase met so far, each answered by sat instead: queries it reported as failed,
+// "separated" verdicts that sat found overlapping (every libccd separation is confirmed by sat), and depths deeper
+// than a face axis allows (not the minimum translation: MPR).
 struct NarrowPhaseStats {
   std::uint64_t queries = 0, primary_failures = 0;
 };

@@ -370,3 +370,34 @@ TEST(ContactFailureModes, LibccdGjkEpaMissIsCaughtBySat) {
   EXPECT_NEAR(w.contacts()[0].depth, 5.094028e-4, 1e-9);
   EXPECT_EQ(w.narrow_phase_stats().primary_failures, 1u);
 }
+
+// MPR's depth is the penetration along its portal, not the minimum translation (failure map: up to 81 % too deep on
+// vertex-into-vertex floes; horizontal on floes overlapping by more than their thickness). The spatial world checks
+// every libccd depth against the face axes (for prisms, every face of the Minkowski difference) and lets sat answer
+// one that is too deep. Two 10 m x 10 m x 1 m slabs at one level overlapping by 2 m sideways: the least translation
+// is vertical, 1 m.
+TEST(ContactFailureModes, LibccdDepthDeeperThanAFaceAxisIsAnsweredBySat) {
+  auto slab = std::make_shared<const geometry::ConvexPolyhedron>(geometry::ConvexPolyhedron::box({10.0, 10.0, 1.0}));
+  dynamics::SpatialSettings ws;
+  ws.narrow_phase = dynamics::SpatialNarrowPhase::mpr;
+  dynamics::SpatialWorld w(ws);
+  for (int k = 0; k < 2; ++k) {
+    dynamics::SpatialBodyDesc d;
+    d.id = static_cast<dynamics::BodyId>(k);
+    d.shape = slab;
+    d.position = {k ? 8.0 : 0.0, k ? 0.3 : 0.0, 0.0};
+    w.add_body(d);
+  }
+  std::vector<Vec3> a3(w.world_vertices(0).begin(), w.world_vertices(0).end());
+  std::vector<Vec3> b3(w.world_vertices(1).begin(), w.world_vertices(1).end());
+  const contact::CcdContact raw = contact::ccd_penetration(a3, b3, contact::CcdMethod::mpr);
+  std::cout << "[ mpr ] status " << static_cast<int>(raw.status) << " depth " << raw.depth << " normal "
+            << raw.normal.transpose() << "\n";
+  w.compute_forces(1e-4);
+  ASSERT_EQ(w.contacts().size(), 1u);
+  EXPECT_NEAR(w.contacts()[0].depth, 1.0, 1e-9);
+  EXPECT_NEAR(std::abs(w.contacts()[0].normal.z()), 1.0, 1e-9);
+  if (raw.status == contact::CcdStatus::contact && raw.depth > 1.0 + 1e-9) {
+    EXPECT_EQ(w.narrow_phase_stats().primary_failures, 1u);  // MPR's too-deep answer was caught
+  }
+}
