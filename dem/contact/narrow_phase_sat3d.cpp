@@ -79,9 +79,10 @@ int supporting_edge(const geometry::ConvexPolyhedron& s, std::span<const Vec3> w
   for (int k = 0; k < static_cast<int>(edges.size()); ++k) {
     const Vec3& p = w[edges[k].first];
     const Vec3& q = w[edges[k].second];
-    // prefer edges parallel to the axis' edge direction, then the highest along n
-    const double along = std::abs((q - p).normalized().dot(dir));
-    const double score = n.dot(p) + n.dot(q) - (along > 1.0 - 1e-9 ? 0.0 : 1e300);
+    // prefer edges parallel to the axis' edge direction (the criterion that merged the directions:
+    // geometry/polyhedron.cpp), then the highest along n
+    const bool parallel = (q - p).normalized().cross(dir).norm() < 1e-9;
+    const double score = n.dot(p) + n.dot(q) - (parallel ? 0.0 : 1e300);
     if (score > best_score) {
       best_score = score;
       best = k;

@@ -249,11 +249,13 @@ void SpatialWorld::compute_forces(double dt) {
     const double rb_eff = is_dynamic_[b] ? radius_[b] : contact::kInfinite;
     auto coef = law_.coefficients(ra_eff, rb_eff, 1.0 / inv_m, contact::kInfinite);
     // Each point is a Hertz contact of its own depth (W = sum 2/5 k_n d_k^2.5: conservative, a flat face on a face
-    // is stiffer than a corner), applied where it is. N points at one depth act as one contact of stiffness N k_n,
-    // so each gets the damping c / sqrt(N) that keeps that contact's restitution e.
+    // is stiffer than a corner), applied where it is. N points at one depth act as one contact of stiffness N k_n;
+    // the damping that keeps its restitution e scales as sqrt(k) (speed-independent model: c = zeta sqrt(m k)) or
+    // k^0.6 (paper model: c ~ k^0.6 m^0.4), so each point gets N^(1/2 or 0.6) c / N.
     const auto point_coef = [&] {
       auto pc = coef;
-      pc.damping = coef.damping / std::sqrt(static_cast<double>(m.count));
+      const double exponent = law_.settings().damping == contact::DampingModel::paper ? -0.4 : -0.5;
+      pc.damping = coef.damping * std::pow(static_cast<double>(m.count), exponent);
       return pc;
     }();
     Vec3 fn = Vec3::Zero(), torque_a = Vec3::Zero(), torque_b = Vec3::Zero();

@@ -7,10 +7,11 @@
 // One step (velocity Verlet, kick-drift-kick):
 //   kick     v += dt/2 F/m,  L += dt/2 tau            (L: angular momentum about the centre, world frame)
 //   drift    x += dt v,  q <- exp(dt w_mid) q, w_mid = R_mid I_body^-1 R_mid^T L at the mid-step orientation
-//            (fixed-point iterations: the free rotor keeps its energy to round-off over a step)
-//   forces   broad phase (grid on the xy boxes, then z), narrow phase (libccd behind contact/narrow_phase_ccd.h),
-//            manifold (contact/manifold.h), contact law (Hertz + damping + 3-D tangential spring capped by
-//            Coulomb), gravity and buoyancy (optional)
+//            (fixed-point iterations; time-symmetric: a free rotor's energy error is O(dt^3) per step and does not
+//            drift)
+//   forces   broad phase (grid on the xy boxes, then z), narrow phase (exact separating axes, or libccd behind
+//            contact/narrow_phase_ccd.h with sat behind it), witness point or manifold (contact/manifold.h), contact
+//            law (Hertz + damping + 3-D tangential spring capped by Coulomb), gravity and buoyancy (optional)
 //   kick     as above.
 #pragma once
 

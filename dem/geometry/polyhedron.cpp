@@ -117,27 +117,32 @@ SubmergedPart submerged_part(const ConvexPolyhedron& shape, std::span<const Vec3
   // With coordinates y = x - (0, 0, level): V = 1/3 sum_f (y_f . n_f) A_f and integral of y_k dV =
   // 1/2 sum_f n_fk integral over f of y_k^2 dS. On the cap (the waterplane) y_z = 0 and n = +z, so the cap adds
   // nothing to either: only the submerged parts of the faces are needed.
+  // y is also measured from a vertex horizontally (any horizontal origin will do: n_x = n_y = 0 on the cap), so that
+  // the quadratic integrals do not lose digits to the body's distance from the world origin.
   SubmergedPart out;
+  if (world_vertices.empty()) return out;
+  const Vec3 origin{world_vertices[0].x(), world_vertices[0].y(), level};
   double volume = 0.0;
   Vec3 first = Vec3::Zero();
-  std::array<Vec3, 64> poly{};
+  // A convex face cut by a plane keeps at most its vertex count + 1 points (the buffer is kept: no allocation once
+  // warm).
+  thread_local std::vector<Vec3> poly;
   for (const auto& f : shape.faces()) {
-    int m = 0;
+    poly.clear();
     const std::size_t n = f.loop.size();
-    for (std::size_t k = 0; k < n && m + 2 <= static_cast<int>(poly.size()); ++k) {
-      Vec3 a = world_vertices[f.loop[k]];
-      Vec3 b = world_vertices[f.loop[(k + 1) % n]];
-      a.z() -= level;
-      b.z() -= level;
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec3 a = world_vertices[f.loop[k]] - origin;
+      const Vec3 b = world_vertices[f.loop[(k + 1) % n]] - origin;
       const bool ina = a.z() <= 0.0, inb = b.z() <= 0.0;
-      if (ina) poly[m++] = a;
+      if (ina) poly.push_back(a);
       if (ina != inb) {
         const double t = a.z() / (a.z() - b.z());
         Vec3 x = a + t * (b - a);
         x.z() = 0.0;
-        poly[m++] = x;
+        poly.push_back(x);
       }
     }
+    const int m = static_cast<int>(poly.size());
     if (m < 3) continue;
     // normal from the rotated shape (world_vertices are a rigid motion of the body frame)
     Vec3 nw = (poly[1] - poly[0]).cross(poly[2] - poly[0]);
@@ -157,8 +162,7 @@ SubmergedPart submerged_part(const ConvexPolyhedron& shape, std::span<const Vec3
   }
   if (volume > 0.0) {
     out.volume = volume;
-    out.centroid = first / volume;
-    out.centroid.z() += level;
+    out.centroid = first / volume + origin;
   }
   return out;
 }

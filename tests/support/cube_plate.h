@@ -43,6 +43,7 @@ struct CubePlateSetup {
   double youngs_modulus = 1.0e9;    // [Pa]
   double restitution = 0.5;         // [-]
   double steps_per_contact = 200.0; // [-]
+  contact::DampingModel damping = contact::DampingModel::speed_independent;
   dynamics::ContactPointModel contact_point = dynamics::ContactPointModel::witness;
   dynamics::SpatialNarrowPhase narrow_phase = dynamics::SpatialNarrowPhase::sat;
 };
@@ -52,6 +53,8 @@ inline dynamics::SpatialWorld make_cube_plate(const CubePlateSetup& s) {
   ws.contact.youngs_modulus = s.youngs_modulus;
   ws.contact.restitution = s.restitution;
   ws.contact.friction = 0.0;
+  ws.contact.damping = s.damping;
+  ws.contact.reference_speed = s.v0;  // where the paper damping model hits e
   ws.contact_point = s.contact_point;
   ws.narrow_phase = s.narrow_phase;
   dynamics::SpatialWorld w(ws);

@@ -80,6 +80,21 @@ TEST(Polyhedron, SubmergedPartOfATiltedBoxIsExact) {
   EXPECT_EQ(polyfloe::geometry::submerged_part(b, w, 0.0).volume, 0.0);
 }
 
+// A 64-gon floe (the most corners a scene allows) 5 km from the origin, at its draft: the submerged volume is area x
+// draft and its centre under the centroid, to 1e-12 relative (every face vertex kept; coordinates taken from the
+// body, not the world origin).
+TEST(Polyhedron, SubmergedPartOfA64GonFarFromTheOrigin) {
+  const auto s = ConvexPolyhedron::prism(ConvexPolygon::regular(64, 20.0), 1.0);
+  const double draft = 0.8976;
+  const auto w = world(s, Mat3::Identity(), {5000.0, -5000.0, 0.5 - draft});
+  const auto sub = polyfloe::geometry::submerged_part(s, w, 0.0);
+  const double area = s.volume() / 1.0;
+  EXPECT_NEAR(sub.volume, area * draft, 1e-12 * area * draft);
+  EXPECT_NEAR(sub.centroid.x(), 5000.0, 1e-12 * 5000.0);
+  EXPECT_NEAR(sub.centroid.y(), -5000.0, 1e-12 * 5000.0);
+  EXPECT_NEAR(sub.centroid.z(), -0.5 * draft, 1e-12);
+}
+
 TEST(Manifold, FaceOnFaceGivesFourPointsAndACentredForce) {
   const auto plate = ConvexPolyhedron::box({10.0, 10.0, 1.0});
   const auto cube = ConvexPolyhedron::box({2.0, 2.0, 2.0});

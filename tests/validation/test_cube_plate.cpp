@@ -56,6 +56,18 @@ TEST(CubePlateFaceOn, BouncesStraightBackWithoutSpin) {
   }
 }
 
+// The paper's damping form (c d^(1/2) d_dot, e exact at the reference speed = v0) through a 4-point manifold: the
+// points share the damping as N^-0.4 (c ~ k^0.6), so the face-on bounce still has restitution e (1 % of v0).
+TEST(CubePlateFaceOn, PaperDampingThroughTheManifoldKeepsRestitution) {
+  CubePlateSetup s;
+  s.alpha = 0.0;
+  s.contact_point = ContactPointModel::manifold;
+  s.damping = polyfloe::contact::DampingModel::paper;
+  const auto sim = run_cube_plate(s);
+  EXPECT_EQ(sim.manifold_points, 4);
+  EXPECT_NEAR(sim.v_ratio, -0.5, 0.005);
+}
+
 // libccd behind the adapter gives the same answer on the edge impacts (its point is off the edge's midline, so the
 // manifold carries the force; a failed query falls back to sat).
 TEST(CubePlateLibccd, GjkEpaWithManifoldMatchesEquations6And7) {
