@@ -9,7 +9,6 @@
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
-#include <vtkIntArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -18,7 +17,6 @@
 #include <vtkSmartPointer.h>
 #include <vtkTypeInt32Array.h>
 #include <vtkTypeUInt64Array.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkXMLImageDataWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -27,13 +25,14 @@
 #include <cstdio>
 #include <system_error>
 
-#include "dynamics/spatial_world.h"
 #include "dynamics/world.h"
 #include "io/atomic_file.h"
+#include "io/vtk_common.h"
 
 namespace polyfloe::io {
 namespace fs = std::filesystem;
 using geometry::Vec2;
+
 namespace {
 
 // Shortest text that reads back to the same double.
@@ -58,20 +57,6 @@ std::string xml_escape(const std::string& s) {
   return out;
 }
 
-std::string frame_name(const std::string& stem, int frame, const char* extension = ".vtp") {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "_%06d", frame);
-  return stem + buf + extension;
-}
-
-template <class Array>
-vtkSmartPointer<Array> make_array(const char* name, int components, vtkIdType tuples) {
-  auto a = vtkSmartPointer<Array>::New();
-  a->SetName(name);
-  a->SetNumberOfComponents(components);
-  a->SetNumberOfTuples(tuples);
-  return a;
-}
 
 // Collects VTK error messages of one object instead of letting them go to the output window.
 class ErrorCatcher {
@@ -114,6 +99,16 @@ void write_xml(vtkXMLWriter* writer, vtkDataObject* data, const fs::path& target
   commit_file_atomic(tmp, target);
 }
 
+}  // namespace
+
+namespace detail {
+
+std::string frame_name(const std::string& stem, int frame, const char* extension) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "_%06d", frame);
+  return stem + buf + extension;
+}
+
 void write_polydata(vtkPolyData* data, const fs::path& target) {
   vtkNew<vtkXMLPolyDataWriter> writer;
   write_xml(writer, data, target);
@@ -128,8 +123,6 @@ void add_time(vtkDataObject* data, double t, std::uint64_t step) {
   data->GetFieldData()->AddArray(cycle);
 }
 
-void add_time(vtkDataObject* data, const dynamics::World& world) { add_time(data, world.time(), world.step_count()); }
-
 // 0, 1, ..., count - 1
 vtkSmartPointer<vtkIdTypeArray> iota(vtkIdType count) {
   auto a = vtkSmartPointer<vtkIdTypeArray>::New();
@@ -137,6 +130,17 @@ vtkSmartPointer<vtkIdTypeArray> iota(vtkIdType count) {
   for (vtkIdType c = 0; c < count; ++c) a->SetValue(c, c);
   return a;
 }
+
+}  // namespace detail
+
+using namespace detail;
+
+namespace {
+
+
+
+void add_time(vtkDataObject* data, const dynamics::World& world) { detail::add_time(data, world.time(), world.step_count()); }
+
 
 // Every body as a prism floating at its equilibrium draft: points are the bottom ring then the top ring of each
 // body; cells are the top polygon, the bottom polygon (reversed) and one quad per edge, all facing outward.
@@ -426,104 +430,6 @@ std::string PvdCollection::text() const {
          "</VTKFile>\n";
 }
 
-namespace {
-
-vtkSmartPointer<vtkPolyData> spatial_bodies_polydata(const dynamics::SpatialWorld& world) {
-  vtkIdType points = 0, cells = 0;
-  for (int i = 0; i < static_cast<int>(world.size()); ++i) {
-    points += static_cast<vtkIdType>(world.world_vertices(i).size());
-    cells += static_cast<vtkIdType>(world.shape(i).faces().size());
-  }
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  pts->SetNumberOfPoints(points);
-  vtkNew<vtkCellArray> polys;
-  auto id = make_array<vtkTypeUInt64Array>("id", 1, cells);
-  auto motion = make_array<vtkUnsignedCharArray>("motion", 1, cells);
-  auto vel = make_array<vtkDoubleArray>("velocity", 3, cells);
-  auto omega = make_array<vtkDoubleArray>("angular_velocity", 3, cells);
-  vtkIdType p0 = 0, c = 0;
-  std::vector<vtkIdType> loop;
-  for (int i = 0; i < static_cast<int>(world.size()); ++i) {
-    const auto w = world.world_vertices(i);
-    for (std::size_t k = 0; k < w.size(); ++k) pts->SetPoint(p0 + static_cast<vtkIdType>(k), w[k].data());
-    const geometry::Vec3 v = world.velocity(i), om = world.angular_velocity(i);
-    for (const auto& f : world.shape(i).faces()) {
-      loop.clear();
-      for (int k : f.loop) loop.push_back(p0 + k);
-      polys->InsertNextCell(static_cast<vtkIdType>(loop.size()), loop.data());
-      id->SetValue(c, world.id(i));
-      motion->SetValue(c, static_cast<unsigned char>(world.motion(i)));
-      vel->SetTuple(c, v.data());
-      omega->SetTuple(c, om.data());
-      ++c;
-    }
-    p0 += static_cast<vtkIdType>(w.size());
-  }
-  auto pd = vtkSmartPointer<vtkPolyData>::New();
-  pd->SetPoints(pts);
-  pd->SetPolys(polys);
-  pd->GetCellData()->AddArray(id);
-  pd->GetCellData()->AddArray(motion);
-  pd->GetCellData()->AddArray(vel);
-  pd->GetCellData()->AddArray(omega);
-  add_time(pd, world.time(), world.step_count());
-  return pd;
-}
-
-vtkSmartPointer<vtkPolyData> spatial_contacts_polydata(const dynamics::SpatialWorld& world) {
-  const auto& cs = world.contacts();
-  const auto n = static_cast<vtkIdType>(cs.size());
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  pts->SetNumberOfPoints(n);
-  auto normal = make_array<vtkDoubleArray>("normal", 3, n);
-  auto force = make_array<vtkDoubleArray>("force", 3, n);
-  auto depth = make_array<vtkDoubleArray>("depth", 1, n);
-  auto points = make_array<vtkIntArray>("manifold_points", 1, n);
-  for (vtkIdType k = 0; k < n; ++k) {
-    const auto& c = cs[static_cast<std::size_t>(k)];
-    pts->SetPoint(k, c.point.data());
-    normal->SetTuple(k, c.normal.data());
-    force->SetTuple(k, c.force.data());
-    depth->SetValue(k, c.depth);
-    points->SetValue(k, c.manifold_points);
-  }
-  auto pd = vtkSmartPointer<vtkPolyData>::New();
-  pd->SetPoints(pts);
-  vtkNew<vtkCellArray> verts;
-  verts->SetData(iota(n + 1), iota(n));
-  pd->SetVerts(verts);
-  pd->GetPointData()->AddArray(normal);
-  pd->GetPointData()->AddArray(force);
-  pd->GetPointData()->AddArray(depth);
-  pd->GetPointData()->AddArray(points);
-  add_time(pd, world.time(), world.step_count());
-  return pd;
-}
-
-}  // namespace
-
-SpatialVtkSeriesWriter::SpatialVtkSeriesWriter(const fs::path& dir, bool write_contacts)
-    : dir_(dir), write_contacts_(write_contacts), bodies_pvd_(dir / "bodies.pvd"), contacts_pvd_(dir / "contacts.pvd") {
-  std::error_code ec;
-  fs::create_directories(dir / "bodies", ec);
-  if (!ec && write_contacts_) fs::create_directories(dir / "contacts", ec);
-  if (ec) throw IoError("cannot create VTK output folders in " + dir.string() + ": " + ec.message());
-}
-
-void SpatialVtkSeriesWriter::write_frame(const dynamics::SpatialWorld& world) {
-  const std::string bodies_file = "bodies/" + frame_name("bodies", frames_);
-  write_polydata(spatial_bodies_polydata(world), dir_ / bodies_file);
-  std::string contacts_file;
-  if (write_contacts_) {
-    contacts_file = "contacts/" + frame_name("contacts", frames_);
-    write_polydata(spatial_contacts_polydata(world), dir_ / contacts_file);
-  }
-  bodies_pvd_.add(world.time(), bodies_file);
-  if (write_contacts_) contacts_pvd_.add(world.time(), contacts_file);
-  ++frames_;
-}
 
 VtkSeriesWriter::VtkSeriesWriter(const fs::path& dir, bool write_contacts, double water_density)
     : dir_(dir),

@@ -1,9 +1,9 @@
 // Scene -> SpatialWorld: the polyhedra of spatial.bodies, with their given ids or the next free ones in order.
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 
+#include "scene/body_ids.h"
 #include "scene/scene.h"
 
 namespace polyfloe::scene {
@@ -31,23 +31,14 @@ dynamics::SpatialWorld build_spatial_world(const Scene& scene) {
   settings.water_level = sp.water_level;
   dynamics::SpatialWorld world(settings);
 
-  std::map<dynamics::BodyId, std::size_t> given;
-  for (std::size_t i = 0; i < sp.bodies.size(); ++i) {
-    if (!sp.bodies[i].id) continue;
-    if (auto [it, fresh] = given.emplace(*sp.bodies[i].id, i); !fresh)
-      throw SceneError(body_where(sp.bodies[i], i) + ": id " + std::to_string(*sp.bodies[i].id) +
-                       " is already used by " + body_where(sp.bodies[it->second], it->second));
-  }
-  dynamics::BodyId next = 0;
+  std::vector<std::optional<std::uint64_t>> given;
+  for (const SpatialBodySpec& b : sp.bodies) given.push_back(b.id);
+  const std::vector<dynamics::BodyId> ids =
+      detail::assign_ids(given, [&](std::size_t i) { return body_where(sp.bodies[i], i); });
   for (std::size_t i = 0; i < sp.bodies.size(); ++i) {
     const SpatialBodySpec& b = sp.bodies[i];
     dynamics::SpatialBodyDesc d;
-    if (b.id) {
-      d.id = *b.id;
-    } else {
-      while (given.count(next)) ++next;
-      d.id = next++;
-    }
+    d.id = ids[i];
     try {
       d.shape = std::make_shared<geometry::ConvexPolyhedron>(
           b.box ? geometry::ConvexPolyhedron::box(*b.box)

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "forcing/drift.h"
+#include "scene/body_ids.h"
 #include "scene/channel.h"
 #include "scene/field_statistics.h"
 #include "scene/floe_field.h"
@@ -139,24 +140,11 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
   dynamics::World world(settings);
 
   // Ids: the given ones (unique), then the next free ones in list order.
-  std::map<BodyId, std::size_t> given;
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const BodySpec& b = scene.bodies[i];
-    if (!b.id) continue;
-    if (auto [it, fresh] = given.emplace(*b.id, i); !fresh)
-      throw SceneError(body_source(b, i) + ": id " + std::to_string(*b.id) + " is already used by " +
-                       body_source(scene.bodies[it->second], it->second));
-  }
-  std::vector<BodyId> ids(scene.bodies.size());
+  std::vector<std::optional<std::uint64_t>> given;
+  for (const BodySpec& b : scene.bodies) given.push_back(b.id);
+  const std::vector<BodyId> ids =
+      detail::assign_ids(given, [&](std::size_t i) { return body_source(scene.bodies[i], i); });
   BodyId next = 0;
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].id) {
-      ids[i] = *scene.bodies[i].id;
-      continue;
-    }
-    while (given.count(next)) ++next;
-    ids[i] = next++;
-  }
   for (BodyId id : ids) next = std::max(next, id + 1);
 
   // Explicit bodies.

@@ -1,0 +1,34 @@
+// Pieces of the VTK writers shared by vtk_writer.cpp (floes, bonds, contacts, images) and spatial_vtk_writer.cpp
+// (spatial bodies). Internal to dem/io: it includes VTK, which only dem/io/*.cpp may see.
+#pragma once
+
+#include <vtkDataObject.h>
+#include <vtkIdTypeArray.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace polyfloe::io::detail {
+
+// "stem_NNNNNN.ext": the file name of frame `frame`.
+std::string frame_name(const std::string& stem, int frame, const char* extension = ".vtp");
+// Writes `data` as XML PolyData (binary appended, zlib) via a temporary sibling renamed into place; throws IoError.
+void write_polydata(vtkPolyData* data, const std::filesystem::path& target);
+// Field data TIME [s] and CYCLE (the step) that ParaView reads.
+void add_time(vtkDataObject* data, double t, std::uint64_t step);
+// 0, 1, ..., count - 1
+vtkSmartPointer<vtkIdTypeArray> iota(vtkIdType count);
+
+template <class Array>
+vtkSmartPointer<Array> make_array(const char* name, int components, vtkIdType tuples) {
+  auto a = vtkSmartPointer<Array>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(tuples);
+  return a;
+}
+
+}  // namespace polyfloe::io::detail
