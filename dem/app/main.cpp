@@ -1,6 +1,7 @@
 // polyfloe: the command line.
 //   polyfloe run SCENE [-o DIR] [--set key.path=value]... [--threads N] [--profile] [--restart CHECKPOINT|DIR]
 //   polyfloe check SCENE [--set key.path=value]...
+//   polyfloe field import|info|compare ...   (runs polyfloe-field from coupling/, installed beside this program)
 //   polyfloe --help | --version
 // Exit codes: 0 done, 2 bad input, 3 the run became unstable, 1 anything else.
 #include <unistd.h>
@@ -38,6 +39,8 @@ const char* kUsage = R"(PolyFloe: polyhedral discrete-element simulation of sea-
 Usage:
   polyfloe run SCENE [options]     run a scene, write VTK (.pvd/.vtp) and HDF5 results
   polyfloe check SCENE [options]   validate a scene, print it resolved and the time step it would use
+  polyfloe field import CASE -o F  resample an OpenFOAM case's velocity onto a grid: an ocean field file
+                                   (also: field info F, field compare CASE F; polyfloe field --help)
   polyfloe --help                  this text
   polyfloe --version               the code version
 
@@ -248,7 +251,23 @@ int run_spatial_scene(const Args& args, const scene::Scene& sc) {
 
 }  // namespace
 
+// `polyfloe field ...` is the program polyfloe-field (coupling/: it links VTK's OpenFOAM reader, which the
+// simulator itself never needs), run in this process's place, git-style.
+int exec_field_tool(int argc, char** argv) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path tool = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "polyfloe-field";
+  std::vector<char*> args{const_cast<char*>(tool.c_str())};
+  for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+  args.push_back(nullptr);
+  execv(tool.c_str(), args.data());
+  std::cerr << "polyfloe: error: cannot run " << tool.string() << " (" << std::strerror(errno)
+            << "); it is built with polyfloe (scripts/build.sh)\n";
+  return run::kExitFailure;
+}
+
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "field") return exec_field_tool(argc, argv);
   if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
                     std::string(argv[1]) == "help")) {
     std::cout << kUsage;

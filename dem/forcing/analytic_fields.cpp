@@ -1,5 +1,7 @@
 #include "forcing/analytic_fields.h"
 
+#include "forcing/gridded_field.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -16,6 +18,7 @@ std::string_view to_string(FieldKind k) {
     case FieldKind::rankine: return "rankine";
     case FieldKind::tidal: return "tidal";
     case FieldKind::time_series: return "time_series";
+    case FieldKind::file: return "file";
   }
   return "?";
 }
@@ -25,6 +28,14 @@ std::string_view to_string(TimeBoundary b) {
     case TimeBoundary::clamp: return "clamp";
     case TimeBoundary::cyclic: return "cyclic";
     case TimeBoundary::error: return "error";
+  }
+  return "?";
+}
+
+std::string_view to_string(OutsideWater o) {
+  switch (o) {
+    case OutsideWater::error: return "error";
+    case OutsideWater::velocity: return "velocity";
   }
   return "?";
 }
@@ -170,6 +181,12 @@ std::string field_spec_error(const FieldSpec& s) {
       }
       return {};
     }
+    case FieldKind::file: {
+      if (!s.grid) return "the field file '" + s.path + "' is not loaded";
+      if (std::string e = grid_data_error(*s.grid); !e.empty()) return s.path + ": " + e;
+      if (!finite(s.no_water_velocity)) return "no_water_velocity must be finite";
+      return {};
+    }
   }
   return "unknown field kind";
 }
@@ -184,6 +201,9 @@ std::shared_ptr<const VelocityField> make_field(const FieldSpec& s) {
     case FieldKind::rankine: return std::make_shared<VortexField>(s);
     case FieldKind::tidal: return std::make_shared<TidalField>(s);
     case FieldKind::time_series: return std::make_shared<TimeSeriesField>(s);
+    case FieldKind::file:
+      return std::make_shared<GriddedField>(
+          s.grid, GriddedFieldOptions{s.outside, s.no_water, s.no_water_velocity, s.path});
   }
   throw std::invalid_argument("unknown field kind");
 }

@@ -1,5 +1,5 @@
 // Analytic velocity fields: uniform, linear (shear, strain, depth shear), solid-body and Rankine vortices, a tidal
-// (time-periodic) uniform flow and a piecewise-linear time series. A FieldSpec is plain data (what a scene says);
+// (time-periodic) uniform flow and a piecewise-linear time series; and a field file's grid (gridded_field.h). A FieldSpec is plain data (what a scene says);
 // make_field() turns a valid one into a VelocityField.
 #pragma once
 
@@ -13,12 +13,18 @@
 
 namespace polyfloe::forcing {
 
-enum class FieldKind { uniform, linear, solid_body, rankine, tidal, time_series };
-// What a time series does outside [times.front(), times.back()].
+enum class FieldKind { uniform, linear, solid_body, rankine, tidal, time_series, file };
+// What a time series or a field file does outside [times.front(), times.back()].
 enum class TimeBoundary { clamp, cyclic, error };
+// What a field file gives where it has no water: outside its grid in x or y, or in a cell whose weight lies
+// entirely on dry (land) nodes.
+enum class OutsideWater { error, velocity };
 
 std::string_view to_string(FieldKind k);
 std::string_view to_string(TimeBoundary b);
+std::string_view to_string(OutsideWater o);
+
+struct GridData;  // forcing/gridded_field.h
 
 struct FieldSpec {
   FieldKind kind = FieldKind::uniform;
@@ -36,7 +42,11 @@ struct FieldSpec {
   double phase = 0.0;                                     // tidal [rad]
   std::vector<double> times;                              // time_series: strictly increasing, >= 2 entries [s]
   std::vector<Vec2> values;                               // time_series: velocity at each time [m/s]
-  TimeBoundary outside = TimeBoundary::clamp;             // time_series beyond its times
+  TimeBoundary outside = TimeBoundary::clamp;             // time_series, file: beyond the times
+  std::string path;                                       // file: the field file (absolute once read)
+  std::shared_ptr<const GridData> grid;                   // file: its content (the scene reader loads it)
+  OutsideWater no_water = OutsideWater::error;            // file: where it has no water
+  Vec2 no_water_velocity{0.0, 0.0};                       // file: the velocity there with no_water = velocity [m/s]
 
   static FieldSpec uniform(const Vec2& v) {
     FieldSpec s;

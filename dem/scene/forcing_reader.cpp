@@ -1,6 +1,9 @@
 #include "scene/forcing_reader.h"
 
+#include <filesystem>
+
 #include "forcing/analytic_fields.h"
+#include "io/field_file.h"
 
 namespace polyfloe::scene::detail {
 
@@ -21,20 +24,60 @@ Eigen::Matrix2d to_matrix2(const Context& ctx, const Field& f, const char* unit)
   return g;
 }
 
+void read_time_boundary(MapReader& m, forcing::FieldSpec& s) {
+  m.choice("outside", s.outside,
+           {{"clamp", forcing::TimeBoundary::clamp},
+            {"cyclic", forcing::TimeBoundary::cyclic},
+            {"error", forcing::TimeBoundary::error}});
+}
+
+// A field file (HDF5, `polyfloe field import`): the path is relative to the scene file's folder; the file is read
+// and checked here, so a bad file fails like a bad key, before any output is written.
+void read_file_field(MapReader& m, forcing::FieldSpec& s) {
+  namespace fs = std::filesystem;
+  const Context& ctx = m.context();
+  const auto fp = m.take("path");
+  if (!fp) ctx.fail(m.self(), "missing required key 'path' (an ocean field file written by `polyfloe field import`)");
+  std::string given;
+  m.text("path", given);
+  if (given.empty()) ctx.fail(*fp, "expected a file name, got an empty text");
+  fs::path path(given);
+  if (path.is_relative()) path = fs::path(ctx.file()).parent_path() / path;
+  path = path.lexically_normal();
+  if (path.is_relative()) path = fs::absolute(path);
+  s.path = path.string();
+  try {
+    s.grid = std::make_shared<forcing::GridData>(io::read_field_file(path).grid);
+  } catch (const std::exception& e) {
+    ctx.fail(*fp, e.what());
+  }
+  const bool has_time = m.has("outside");
+  read_time_boundary(m, s);
+  if (s.grid->t.size() > 1 && !has_time)
+    ctx.fail(m.self(), "the field file has " + std::to_string(s.grid->t.size()) + " snapshots (" + fmt(s.grid->t.front()) +
+                           " to " + fmt(s.grid->t.back()) +
+                           " s): say what the field does beyond them with 'outside' (clamp, cyclic or error)");
+  m.choice("no_water", s.no_water, {{"error", forcing::OutsideWater::error}, {"velocity", forcing::OutsideWater::velocity}});
+  const bool has_velocity = m.vec2("no_water_velocity", s.no_water_velocity, "m/s");
+  if (s.no_water == forcing::OutsideWater::velocity && !has_velocity)
+    ctx.fail(m.self(), "no_water: velocity needs no_water_velocity: [u, v] [m/s]");
+}
+
 // One field block: 'type' picks the kind and with it the keys that may follow.
 forcing::FieldSpec read_field(MapReader m) {
   using forcing::FieldKind;
   const Context& ctx = m.context();
   forcing::FieldSpec s;
   if (!m.has("type"))
-    ctx.fail(m.self(), "missing required key 'type' (uniform, linear, solid_body, rankine, tidal, time_series)");
+    ctx.fail(m.self(), "missing required key 'type' (uniform, linear, solid_body, rankine, tidal, time_series, file)");
   m.choice("type", s.kind,
            {{"uniform", FieldKind::uniform},
             {"linear", FieldKind::linear},
             {"solid_body", FieldKind::solid_body},
             {"rankine", FieldKind::rankine},
             {"tidal", FieldKind::tidal},
-            {"time_series", FieldKind::time_series}});
+            {"time_series", FieldKind::time_series},
+            {"file", FieldKind::file}});
   switch (s.kind) {
     case FieldKind::uniform: m.vec2("velocity", s.velocity, "m/s"); break;
     case FieldKind::linear:
@@ -83,12 +126,10 @@ forcing::FieldSpec read_field(MapReader m) {
           ctx.fail(times[i], fmt(s.times[i]) + " s must be after the previous time " + fmt(s.times[i - 1]) + " s");
         s.values.push_back(to_vec2(ctx, values[i], any("m/s")));
       }
-      m.choice("outside", s.outside,
-               {{"clamp", forcing::TimeBoundary::clamp},
-                {"cyclic", forcing::TimeBoundary::cyclic},
-                {"error", forcing::TimeBoundary::error}});
+      read_time_boundary(m, s);
       break;
     }
+    case FieldKind::file: read_file_field(m, s); break;
   }
   m.finish();
   if (const std::string err = forcing::field_spec_error(s); !err.empty()) ctx.fail(m.self(), err);

@@ -43,6 +43,11 @@ std::string field_yaml(const forcing::FieldSpec& f) {
       for (std::size_t i = 0; i < f.values.size(); ++i) o << (i ? ", " : "") << fmt(f.values[i]);
       o << "], outside: " << forcing::to_string(f.outside);
       break;
+    case FieldKind::file:
+      o << ", path: " << quoted(f.path) << ", outside: " << forcing::to_string(f.outside)
+        << ", no_water: " << forcing::to_string(f.no_water);
+      if (f.no_water == forcing::OutsideWater::velocity) o << ", no_water_velocity: " << fmt(f.no_water_velocity);
+      break;
   }
   o << "}";
   return o.str();

@@ -618,7 +618,7 @@ TEST(SceneErrors, ForcingBlock) {
   EXPECT_TRUE(starts_with(m, "t.yaml:5:12: key 'forcing.ocean.field': missing required key 'type'")) << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: swirl}\n");
   EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.type': expected one of uniform, linear, solid_body, rankine, "
-                          "tidal, time_series, got 'swirl'")) << m;
+                          "tidal, time_series, file, got 'swirl'")) << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: uniform, angular_velocity: 1}\n");
   EXPECT_TRUE(contains(m, "unknown key 'forcing.ocean.field.angular_velocity'; allowed in 'forcing.ocean.field': "
                           "type, velocity")) << m;

@@ -1,0 +1,195 @@
+#include "forcing/gridded_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace polyfloe::forcing {
+
+namespace {
+
+std::string axis_error(const std::vector<double>& a, const char* name, std::size_t min_size) {
+  std::ostringstream os;
+  if (a.size() < min_size) {
+    os << "axis " << name << " has " << a.size() << " values, needs at least " << min_size;
+    return os.str();
+  }
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!std::isfinite(a[i])) {
+      os << "axis " << name << " is not finite at index " << i;
+      return os.str();
+    }
+    if (i > 0 && !(a[i] > a[i - 1])) {
+      os << "axis " << name << " is not strictly increasing at index " << i << " (" << a[i - 1] << ", " << a[i]
+         << ")";
+      return os.str();
+    }
+  }
+  return {};
+}
+
+// Where p falls on an axis: the lower node and the weight of the upper one (0 for a single-node axis).
+struct AxisHit {
+  std::size_t i = 0;
+  double w = 0.0;
+};
+
+// One axis with a fast path for uniform spacing (what the importer writes); otherwise a binary search.
+class Axis {
+ public:
+  explicit Axis(const std::vector<double>& a) : a_(a) {
+    if (a.size() < 2) return;
+    const double h = (a.back() - a.front()) / static_cast<double>(a.size() - 1);
+    uniform_ = true;
+    for (std::size_t i = 1; i < a.size(); ++i)
+      if (std::abs(a[i] - (a.front() + h * static_cast<double>(i))) > 1e-9 * std::max(h, std::abs(a[i])))
+        uniform_ = false;
+    inv_h_ = 1.0 / h;
+  }
+  bool contains(double p) const { return p >= a_.front() && p <= a_.back(); }
+  // p inside [front, back], or clamped to it.
+  AxisHit locate(double p) const {
+    if (a_.size() < 2) return {};
+    p = std::clamp(p, a_.front(), a_.back());
+    std::size_t i;
+    if (uniform_) {
+      const double s = (p - a_.front()) * inv_h_;
+      i = std::min(static_cast<std::size_t>(s), a_.size() - 2);
+    } else {
+      i = static_cast<std::size_t>(std::upper_bound(a_.begin(), a_.end(), p) - a_.begin());
+      i = std::clamp<std::size_t>(i, 1, a_.size() - 1) - 1;
+    }
+    const double w = (p - a_[i]) / (a_[i + 1] - a_[i]);
+    return {i, std::clamp(w, 0.0, 1.0)};
+  }
+
+ private:
+  const std::vector<double>& a_;
+  bool uniform_ = false;
+  double inv_h_ = 0.0;
+};
+
+}  // namespace
+
+std::string grid_data_error(const GridData& g) {
+  for (auto [a, name, min] : {std::tuple{&g.x, "x", 2}, {&g.y, "y", 2}, {&g.z, "z", 1}, {&g.t, "t", 1}})
+    if (std::string e = axis_error(*a, name, static_cast<std::size_t>(min)); !e.empty()) return e;
+  const std::size_t n = g.nodes_per_snapshot(), total = n * g.t.size();
+  std::ostringstream os;
+  for (auto [c, name] : {std::pair{&g.u, "u"}, {&g.v, "v"}}) {
+    if (c->size() != total) {
+      os << name << " has " << c->size() << " values, expected " << total << " (t x z x y x x = " << g.t.size()
+         << " x " << g.z.size() << " x " << g.y.size() << " x " << g.x.size() << ")";
+      return os.str();
+    }
+    for (std::size_t k = 0; k < total; ++k)
+      if (!std::isfinite((*c)[k])) {
+        const std::size_t ix = k % g.x.size(), iy = k / g.x.size() % g.y.size(),
+                          iz = k / (g.x.size() * g.y.size()) % g.z.size(), it = k / n;
+        os << name << " is not finite at node (t " << it << ", z " << iz << ", y " << iy << ", x " << ix << ")";
+        return os.str();
+      }
+  }
+  if (g.wet.size() != n) {
+    os << "wet has " << g.wet.size() << " values, expected " << n << " (z x y x x)";
+    return os.str();
+  }
+  for (std::size_t k = 0; k < n; ++k)
+    if (g.wet[k] > 1) {
+      os << "wet must be 0 or 1, found " << int(g.wet[k]) << " at index " << k;
+      return os.str();
+    }
+  if (std::find(g.wet.begin(), g.wet.end(), std::uint8_t{1}) == g.wet.end()) return "no node is wet";
+  return {};
+}
+
+GriddedField::GriddedField(std::shared_ptr<const GridData> grid, GriddedFieldOptions options)
+    : grid_(std::move(grid)), options_(std::move(options)) {
+  if (!grid_) throw std::invalid_argument("gridded field: no grid");
+  if (std::string e = grid_data_error(*grid_); !e.empty())
+    throw std::invalid_argument((options_.source.empty() ? "" : options_.source + ": ") + e);
+  if (!std::isfinite(options_.no_water_velocity.x()) || !std::isfinite(options_.no_water_velocity.y()))
+    throw std::invalid_argument("gridded field: the no-water velocity is not finite");
+}
+
+void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2> out) const {
+  const GridData& g = *grid_;
+  // The two snapshots around t and the weight of the later one.
+  std::size_t t0 = 0;
+  double wt = 0.0;
+  if (g.t.size() > 1) {
+    const double first = g.t.front(), last = g.t.back();
+    if (t < first || t > last) {
+      switch (options_.time_outside) {
+        case TimeBoundary::clamp: t = std::clamp(t, first, last); break;
+        case TimeBoundary::cyclic: {
+          const double period = last - first;
+          t = first + (t - first - period * std::floor((t - first) / period));
+          t = std::clamp(t, first, last);
+          break;
+        }
+        case TimeBoundary::error: {
+          std::ostringstream os;
+          os << options_.source << ": time " << t << " s is outside the field's snapshots [" << first << ", "
+             << last << "] s (the field says outside: error)";
+          throw FieldError(os.str());
+        }
+      }
+    }
+    const AxisHit h = Axis(g.t).locate(t);
+    t0 = h.i;
+    wt = h.w;
+  }
+  const bool two_times = wt > 0.0;
+  const Axis ax(g.x), ay(g.y), az(g.z);
+  const std::size_t nx = g.x.size(), nxy = nx * g.y.size(), per_t = g.nodes_per_snapshot();
+  const std::size_t dz = g.z.size() > 1 ? nxy : 0;
+
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Vec3& p = points[k];
+    const bool inside = ax.contains(p.x()) && ay.contains(p.y());
+    double u = 0.0, v = 0.0, wet = 0.0;
+    if (inside) {
+      const AxisHit hx = ax.locate(p.x()), hy = ay.locate(p.y()), hz = az.locate(p.z());
+      const std::size_t base = hz.i * nxy + hy.i * nx + hx.i;
+      // The 8 corners (4 when the field is the same at every depth: dz = 0 and the z weight is 0).
+      const std::size_t offset[8] = {0, 1, nx, nx + 1, dz, dz + 1, dz + nx, dz + nx + 1};
+      const double wx[2] = {1.0 - hx.w, hx.w}, wy[2] = {1.0 - hy.w, hy.w}, wz[2] = {1.0 - hz.w, hz.w};
+      for (int c = 0; c < 8; ++c) {
+        const double w = wx[c & 1] * wy[(c >> 1) & 1] * wz[c >> 2];
+        if (w == 0.0) continue;
+        const std::size_t n = base + offset[c];
+        if (!g.wet[n]) continue;  // land: zero velocity, and it does not count as water
+        wet += w;
+        const std::size_t i0 = t0 * per_t + n;
+        double cu = g.u[i0], cv = g.v[i0];
+        if (two_times) {
+          cu += wt * (g.u[i0 + per_t] - cu);
+          cv += wt * (g.v[i0 + per_t] - cv);
+        }
+        u += w * cu;
+        v += w * cv;
+      }
+    }
+    if (wet > 1e-9) {
+      out[k] = Vec2{u, v};
+      continue;
+    }
+    if (options_.no_water == OutsideWater::velocity) {
+      out[k] = options_.no_water_velocity;
+      continue;
+    }
+    std::ostringstream os;
+    os << options_.source << ": no water at (" << p.x() << ", " << p.y() << ", " << p.z() << ") m: ";
+    if (!inside)
+      os << "outside the field's grid x [" << g.x.front() << ", " << g.x.back() << "], y [" << g.y.front() << ", "
+         << g.y.back() << "] m";
+    else
+      os << "on land (every grid node around it is dry)";
+    os << "; to give floes there a fixed current set no_water: velocity and no_water_velocity: [u, v] in the field";
+    throw FieldError(os.str());
+  }
+}
+
+}  // namespace polyfloe::forcing

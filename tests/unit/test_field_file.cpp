@@ -1,0 +1,225 @@
+// Ocean field files (dem/io/field_file.*) and scenes that use them (forcing.ocean.field: {type: file}): the file
+// round-trips exactly; a missing, foreign, malformed or mismatched file is refused with its name and the problem,
+// and a failed write leaves nothing behind; the scene resolves the path against its own folder.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "forcing/gridded_field.h"
+#include "io/field_file.h"
+#include "io/hdf5_file.h"
+#include "scene/scene_reader.h"
+
+namespace polyfloe {
+namespace {
+
+namespace fs = std::filesystem;
+using forcing::GridData;
+
+class FieldFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("polyfloe_field_file_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+// 4 x 3 nodes, 2 levels, 2 snapshots; u = x/100 + t/1000, v = y/100 + z; the node x = 30, y = 20 is land.
+io::FieldFile sample_file() {
+  io::FieldFile f;
+  GridData& g = f.grid;
+  g.x = {0, 10, 20, 30};
+  g.y = {0, 10, 20};
+  g.z = {-2, -0.5};
+  g.t = {0, 600};
+  g.u.resize(48);
+  g.v.resize(48);
+  f.w.resize(48);
+  g.wet.assign(24, 1);
+  for (std::size_t it = 0; it < 2; ++it)
+    for (std::size_t iz = 0; iz < 2; ++iz)
+      for (std::size_t iy = 0; iy < 3; ++iy)
+        for (std::size_t ix = 0; ix < 4; ++ix) {
+          const std::size_t k = g.index(it, iz, iy, ix);
+          g.u[k] = g.x[ix] / 100 + g.t[it] / 1000;
+          g.v[k] = g.y[iy] / 100 + g.z[iz];
+          f.w[k] = 1e-3 * static_cast<double>(k);
+        }
+  for (std::size_t iz = 0; iz < 2; ++iz) {
+    g.wet[g.index(0, iz, 2, 3)] = 0;
+    g.u[g.index(0, iz, 2, 3)] = g.v[g.index(0, iz, 2, 3)] = 0;
+    g.u[g.index(1, iz, 2, 3)] = g.v[g.index(1, iz, 2, 3)] = 0;
+  }
+  f.info = {"a test", "test_field_file"};
+  return f;
+}
+
+TEST_F(FieldFileTest, RoundTripsExactly) {
+  const io::FieldFile f = sample_file();
+  io::write_field_file(dir_ / "f.h5", f);
+  const io::FieldFile r = io::read_field_file(dir_ / "f.h5");
+  EXPECT_EQ(r.grid.x, f.grid.x);
+  EXPECT_EQ(r.grid.y, f.grid.y);
+  EXPECT_EQ(r.grid.z, f.grid.z);
+  EXPECT_EQ(r.grid.t, f.grid.t);
+  EXPECT_EQ(r.grid.u, f.grid.u);
+  EXPECT_EQ(r.grid.v, f.grid.v);
+  EXPECT_EQ(r.w, f.w);
+  EXPECT_EQ(r.grid.wet, f.grid.wet);
+  EXPECT_EQ(r.info.source, "a test");
+  EXPECT_EQ(r.info.created_by, "test_field_file");
+  // Nothing but the file itself is left in the folder (the temporary was renamed).
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+}
+
+std::string error_of(const fs::path& p) {
+  try {
+    (void)io::read_field_file(p);
+  } catch (const io::FieldFileError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST_F(FieldFileTest, RefusesMissingForeignAndMalformedFiles) {
+  EXPECT_EQ(error_of(dir_ / "none.h5"), (dir_ / "none.h5").string() + ": no such file");
+  EXPECT_EQ(error_of(dir_), dir_.string() + ": not a regular file");
+  {
+    std::ofstream(dir_ / "text.h5") << "U = 1 m/s\n";
+  }
+  EXPECT_NE(error_of(dir_ / "text.h5").find((dir_ / "text.h5").string() + ": cannot read"), std::string::npos)
+      << error_of(dir_ / "text.h5");
+  {
+    io::hdf5::File h(dir_ / "foreign.h5", io::hdf5::File::Mode::truncate);
+    h.root().set_attribute("format", "something else");
+    h.close();
+  }
+  EXPECT_NE(error_of(dir_ / "foreign.h5").find("not an ocean field file"), std::string::npos);
+
+  // A valid file, then one piece spoiled at a time.
+  const auto spoil = [&](const char* name, auto&& edit) {
+    const fs::path p = dir_ / name;
+    io::write_field_file(p, sample_file());
+    io::hdf5::File h(p, io::hdf5::File::Mode::read_write);
+    edit(h.root());
+    h.close();
+    return error_of(p);
+  };
+  EXPECT_NE(spoil("version.h5", [](io::hdf5::Group& r) { r.set_attribute("format_version", std::int64_t{7}); })
+                .find("format_version 7 is not supported (this build reads version 1)"),
+            std::string::npos);
+  {
+    const fs::path p = dir_ / "mask.h5";
+    io::hdf5::File h(p, io::hdf5::File::Mode::truncate);
+    io::hdf5::Group& r = h.root();
+    r.set_attribute("format", "polyfloe-ocean-field");
+    r.set_attribute("format_version", std::int64_t{1});
+    const io::FieldFile f = sample_file();
+    r.write_dataset<double>("x", f.grid.x);
+    r.write_dataset<double>("y", f.grid.y);
+    r.write_dataset<double>("z", f.grid.z);
+    r.write_dataset<double>("t", f.grid.t);
+    const std::vector<double> u(2 * 2 * 3 * 4 * 3, 0.0);
+    r.write_dataset<double>("U", u, {2, 2, 3, 4, 3});
+    const std::vector<std::uint8_t> m(2 * 4 * 3, 1);
+    r.write_dataset<std::uint8_t>("mask", m, {2, 4, 3});  // y and x swapped
+    h.close();
+    EXPECT_EQ(error_of(p), p.string() + ": /mask has shape [2, 4, 3], expected [nz, ny, nx] = [2, 3, 4] from the axes");
+  }
+  {
+    const fs::path p = dir_ / "nan.h5";
+    io::hdf5::File h(p, io::hdf5::File::Mode::truncate);
+    io::hdf5::Group& r = h.root();
+    r.set_attribute("format", "polyfloe-ocean-field");
+    r.set_attribute("format_version", std::int64_t{1});
+    const io::FieldFile f = sample_file();
+    r.write_dataset<double>("x", f.grid.x);
+    r.write_dataset<double>("y", f.grid.y);
+    r.write_dataset<double>("z", f.grid.z);
+    r.write_dataset<double>("t", std::vector<double>{0.0, 0.0});  // not increasing
+    std::vector<double> u(2 * 2 * 3 * 4 * 3, 0.0);
+    r.write_dataset<double>("U", u, {2, 2, 3, 4, 3});
+    r.write_dataset<std::uint8_t>("mask", std::vector<std::uint8_t>(24, 1), {2, 3, 4});
+    h.close();
+    EXPECT_EQ(error_of(p), p.string() + ": axis t is not strictly increasing at index 1 (0, 0)");
+  }
+}
+
+TEST_F(FieldFileTest, AFailedWriteLeavesNoFile) {
+  io::FieldFile f = sample_file();
+  f.grid.u[3] = std::nan("");
+  EXPECT_THROW(io::write_field_file(dir_ / "f.h5", f), io::FieldFileError);
+  f = sample_file();
+  f.w.pop_back();
+  EXPECT_THROW(io::write_field_file(dir_ / "f.h5", f), io::FieldFileError);
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+std::string scene_with_field(const std::string& field) {
+  return "name: f\nforcing:\n  ocean:\n    field: " + field + "\nfloes:\n  - rectangle: {width: 5, height: 5}\n";
+}
+
+std::string scene_error(const fs::path& file) {
+  try {
+    (void)scene::read_scene(file);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST_F(FieldFileTest, ASceneReadsItsFieldFileRelativeToItsFolder) {
+  fs::create_directories(dir_ / "fields");
+  io::write_field_file(dir_ / "fields" / "f.h5", sample_file());
+  const fs::path scene_file = dir_ / "s.yaml";
+  std::ofstream(scene_file) << scene_with_field("{type: file, path: fields/f.h5, outside: cyclic}");
+  const scene::Scene s = scene::read_scene(scene_file);
+  ASSERT_EQ(s.ocean_field.kind, forcing::FieldKind::file);
+  EXPECT_EQ(s.ocean_field.path, (dir_ / "fields" / "f.h5").string());
+  EXPECT_EQ(s.ocean_field.outside, forcing::TimeBoundary::cyclic);
+  ASSERT_TRUE(s.world.drift.ocean);
+  // u = x/100 + t/1000 at 700 s = 100 s into the next cycle; v = y/100 + z.
+  const forcing::Vec2 u = s.world.drift.ocean->at({15, 5, -1}, 700);
+  EXPECT_NEAR(u.x(), 0.15 + 0.1, 1e-12);
+  EXPECT_NEAR(u.y(), 0.05 - 1, 1e-12);
+  // The resolved scene names the file absolutely, so it reads from anywhere (the output folder).
+  const std::string resolved = scene::resolved_yaml(s);
+  EXPECT_NE(resolved.find("path: \"" + (dir_ / "fields" / "f.h5").string() + "\", outside: cyclic, no_water: error"),
+            std::string::npos)
+      << resolved;
+  fs::create_directories(dir_ / "out");
+  std::ofstream(dir_ / "out" / "scene.resolved.yaml") << resolved;
+  EXPECT_NO_THROW((void)scene::read_scene(dir_ / "out" / "scene.resolved.yaml"));
+}
+
+TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
+  io::write_field_file(dir_ / "f.h5", sample_file());
+  const fs::path scene_file = dir_ / "s.yaml";
+  std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5}");
+  EXPECT_NE(scene_error(scene_file).find("the field file has 2 snapshots (0 to 600 s): say what the field does beyond "
+                                         "them with 'outside' (clamp, cyclic or error)"),
+            std::string::npos)
+      << scene_error(scene_file);
+  std::ofstream(scene_file) << scene_with_field("{type: file, path: missing.h5, outside: clamp}");
+  EXPECT_NE(scene_error(scene_file).find("s.yaml:4:31: key 'forcing.ocean.field.path': " +
+                                         (dir_ / "missing.h5").string() + ": no such file"),
+            std::string::npos)
+      << scene_error(scene_file);
+  std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, no_water: velocity}");
+  EXPECT_NE(scene_error(scene_file).find("no_water: velocity needs no_water_velocity: [u, v] [m/s]"),
+            std::string::npos)
+      << scene_error(scene_file);
+  std::ofstream(scene_file) << scene_with_field("{type: file, outside: clamp}");
+  EXPECT_NE(scene_error(scene_file).find("missing required key 'path'"), std::string::npos) << scene_error(scene_file);
+  std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, velocity: [1, 0]}");
+  EXPECT_NE(scene_error(scene_file).find("velocity"), std::string::npos) << scene_error(scene_file);
+}
+
+}  // namespace
+}  // namespace polyfloe
