@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "forcing/analytic_fields.h"
+#include "forcing/gridded_field.h"
 #include "io/field_file.h"
 
 namespace polyfloe::scene::detail {
@@ -208,11 +209,16 @@ void check_forcing(const Context& ctx, const Field& root, const Scene& s) {
   const std::pair<const forcing::FieldSpec*, const char*> fields[] = {{&s.ocean_field, "forcing.ocean.field"},
                                                                       {&s.wind_field, "forcing.air.field"}};
   for (const auto& [f, path] : fields) {
-    if (f->kind != forcing::FieldKind::time_series || f->outside != forcing::TimeBoundary::error) continue;
-    if (f->times.front() > 0.0 || f->times.back() < s.time.duration)
-      throw SceneError(ctx.file() + ": key '" + std::string(path) + ".times': the series covers [" +
-                       fmt(f->times.front()) + ", " + fmt(f->times.back()) + "] s but the run spans [0, " +
-                       fmt(s.time.duration) + "] s with outside: error; extend the series or choose clamp or cyclic");
+    if (f->outside != forcing::TimeBoundary::error) continue;
+    const bool series = f->kind == forcing::FieldKind::time_series;
+    const bool file = f->kind == forcing::FieldKind::file && f->grid && f->grid->t.size() > 1;
+    if (!series && !file) continue;
+    const std::vector<double>& t = series ? f->times : f->grid->t;
+    if (t.front() > 0.0 || t.back() < s.time.duration)
+      throw SceneError(ctx.file() + ": key '" + std::string(path) + (series ? ".times': the series" : ".path': the file's snapshots") +
+                       " cover" + (series ? "s" : "") + " [" + fmt(t.front()) + ", " + fmt(t.back()) +
+                       "] s but the run spans [0, " + fmt(s.time.duration) + "] s with outside: error; " +
+                       (series ? "extend the series" : "import more snapshots") + " or choose clamp or cyclic");
   }
 }
 

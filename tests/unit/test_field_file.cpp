@@ -215,6 +215,12 @@ TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
   EXPECT_NE(scene_error(scene_file).find("no_water: velocity needs no_water_velocity: [u, v] [m/s]"),
             std::string::npos)
       << scene_error(scene_file);
+  std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: error}") + "run: {duration: 700}\n";
+  EXPECT_NE(scene_error(scene_file).find("key 'forcing.ocean.field.path': the file's snapshots cover [0, 600] s but the "
+                                         "run spans [0, 700] s with outside: error; import more snapshots or choose "
+                                         "clamp or cyclic"),
+            std::string::npos)
+      << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, outside: clamp}");
   EXPECT_NE(scene_error(scene_file).find("missing required key 'path'"), std::string::npos) << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, velocity: [1, 0]}");
