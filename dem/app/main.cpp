@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "dynamics/parallel.h"
+#include "forcing/field.h"
 #include "geometry/polygon.h"
 #include "run/simulation.h"
 #include "run/spatial_run.h"
@@ -195,6 +196,10 @@ int guarded_run(F&& body) {
   } catch (const run::InstabilityError& e) {
     std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
     return run::kExitUnstable;
+  } catch (const forcing::FieldError& e) {
+    std::cerr << "\npolyfloe: the ice left the ocean field: " << e.what()
+              << "\nThe frames written so far are complete.\n";
+    return run::kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << "\npolyfloe: error: " << e.what() << "\n";
     return run::kExitFailure;

@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <unordered_map>
+#include <string>
 #include <vector>
 
 #include "bonds/bond_set.h"
@@ -255,6 +256,8 @@ class World {
     std::vector<forcing::Vec3> side_points, quad_points;
     std::vector<Vec2> side_water, quad_fluid;
     std::vector<double> quad_rx, quad_ry, quad_fx, quad_fy;  // world-frame levers, sampled fluid (x, y)
+    int error_body = -1;      // the lowest body index whose field sample failed this step on this thread
+    std::string error_text;   // and the field's message
   };
   std::vector<DriftScratch> drift_scratch_;
   std::size_t max_quad_points_ = 0, max_vertices_ = 0;

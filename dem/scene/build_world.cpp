@@ -134,6 +134,32 @@ double time_step(const Scene& scene, const dynamics::World& world) {
   return dt;
 }
 
+namespace {
+
+// A floe that starts where a field file has no water (no_water: error) would stop the run at its first step:
+// say so now, before any output. Only the side-face samples are checked: they surround the bottom's.
+void check_bodies_in_water(const dynamics::World& world) {
+  const forcing::DriftSettings& d = world.settings().drift;
+  if (!d.ocean || d.ocean->uniform_in_space() || !(d.form_drag || d.moment_drag || d.skin_drag)) return;
+  std::vector<forcing::Vec3> points;
+  std::vector<Vec2> water;
+  for (int i = 0; i < static_cast<int>(world.size()); ++i) {
+    if (world.motion(i) != dynamics::Motion::dynamic) continue;
+    const std::span<const Vec2> v = world.world_vertices(i);
+    points.resize(v.size());
+    water.resize(v.size());
+    forcing::side_sample_points(v, world.draft(i), points);
+    try {
+      d.ocean->sample(0.0, points, water);
+    } catch (const forcing::FieldError& e) {
+      throw SceneError("body " + std::to_string(world.id(i)) + " starts where the ocean field has no water: " +
+                       e.what());
+    }
+  }
+}
+
+}  // namespace
+
 dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
   dynamics::WorldSettings settings = scene.world;
   settings.contact.reference_speed = reference_speed(scene);
@@ -270,6 +296,7 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
       *field_report = field_statistics(field.floes, field.region_area, scene.floe_field->size_min,
                                        scene.floe_field->size_max);
   }
+  check_bodies_in_water(world);
   return world;
 }
 

@@ -10,6 +10,7 @@
 #include "forcing/gridded_field.h"
 #include "io/field_file.h"
 #include "io/hdf5_file.h"
+#include "scene/scene.h"
 #include "scene/scene_reader.h"
 
 namespace polyfloe {
@@ -225,6 +226,37 @@ TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
   EXPECT_NE(scene_error(scene_file).find("missing required key 'path'"), std::string::npos) << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, velocity: [1, 0]}");
   EXPECT_NE(scene_error(scene_file).find("velocity"), std::string::npos) << scene_error(scene_file);
+}
+
+TEST_F(FieldFileTest, AFloeOutsideTheWaterIsRefusedAtTheStartAndStopsTheRunWhenItDriftsOut) {
+  io::write_field_file(dir_ / "f.h5", sample_file());  // a grid on x [0, 30], y [0, 20]
+  const fs::path scene_file = dir_ / "s.yaml";
+  const auto scene_at = [&](const char* position, const char* velocity) {
+    std::ofstream(scene_file) << "name: f\nforcing:\n  ocean:\n    field: {type: file, path: f.h5, outside: clamp}\n"
+                              << "floes:\n  - {rectangle: {width: 4, height: 4}, position: " << position
+                              << ", velocity: " << velocity << "}\n";
+    return scene::read_scene(scene_file);
+  };
+  try {
+    (void)scene::build_world(scene_at("[29, 19]", "[0, 0]"));
+    FAIL() << "a floe on land was accepted";
+  } catch (const scene::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("body 0 starts where the ocean field has no water: " +
+                                         (dir_ / "f.h5").string() + ": no water at ("),
+              std::string::npos)
+        << e.what();
+  }
+  dynamics::World w = scene::build_world(scene_at("[15, 10]", "[20, 0]"));
+  try {
+    for (int k = 0; k < 100000; ++k) w.step(1e-3);
+    FAIL() << "the floe left the field without an error";
+  } catch (const forcing::FieldError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("body 0 at (", 0), 0u) << m;
+    EXPECT_NE(m.find("outside the field's grid x [0, 30], y [0, 20] m"), std::string::npos) << m;
+    EXPECT_GT(w.positions()[0].x(), 27.0);  // its side faces reached x = 30 (half-width 2 m)
+    EXPECT_LT(w.positions()[0].x(), 28.1);
+  }
 }
 
 }  // namespace
