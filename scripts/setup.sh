@@ -12,6 +12,7 @@ PACKAGES=(
   libeigen3-dev libccd-dev libvtk9-dev libhdf5-dev libyaml-cpp-dev libboost-dev
   libgtest-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
+  openfoam  # v1912: the of_cases (OpenFOAM flows that drive the ice; tests/validation/test_strait_openfoam.cpp)
 )
 # Optional groups, named on the command line.
 FUZZ_PACKAGES=(clang libclang-rt-dev)

@@ -104,6 +104,30 @@ std::string grid_data_error(const GridData& g) {
   return {};
 }
 
+TimeBracket time_bracket(std::span<const double> times, double t, TimeBoundary outside, const std::string& source) {
+  if (times.size() < 2) return {};
+  const double first = times.front(), last = times.back();
+  if (t < first || t > last) {
+    switch (outside) {
+      case TimeBoundary::clamp: t = std::clamp(t, first, last); break;
+      case TimeBoundary::cyclic: {
+        const double period = last - first;
+        t = std::clamp(first + (t - first - period * std::floor((t - first) / period)), first, last);
+        break;
+      }
+      case TimeBoundary::error: {
+        std::ostringstream os;
+        os << source << ": time " << t << " s is outside the field's snapshots [" << first << ", " << last
+           << "] s (the field says outside: error)";
+        throw FieldError(os.str());
+      }
+    }
+  }
+  std::size_t i = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+  i = std::clamp<std::size_t>(i, 1, times.size() - 1) - 1;
+  return {i, std::clamp((t - times[i]) / (times[i + 1] - times[i]), 0.0, 1.0)};
+}
+
 GriddedField::GriddedField(std::shared_ptr<const GridData> grid, GriddedFieldOptions options)
     : grid_(std::move(grid)), options_(std::move(options)) {
   if (!grid_) throw std::invalid_argument("gridded field: no grid");
@@ -115,32 +139,9 @@ GriddedField::GriddedField(std::shared_ptr<const GridData> grid, GriddedFieldOpt
 
 void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2> out) const {
   const GridData& g = *grid_;
-  // The two snapshots around t and the weight of the later one.
-  std::size_t t0 = 0;
-  double wt = 0.0;
-  if (g.t.size() > 1) {
-    const double first = g.t.front(), last = g.t.back();
-    if (t < first || t > last) {
-      switch (options_.time_outside) {
-        case TimeBoundary::clamp: t = std::clamp(t, first, last); break;
-        case TimeBoundary::cyclic: {
-          const double period = last - first;
-          t = first + (t - first - period * std::floor((t - first) / period));
-          t = std::clamp(t, first, last);
-          break;
-        }
-        case TimeBoundary::error: {
-          std::ostringstream os;
-          os << options_.source << ": time " << t << " s is outside the field's snapshots [" << first << ", "
-             << last << "] s (the field says outside: error)";
-          throw FieldError(os.str());
-        }
-      }
-    }
-    const AxisHit h = Axis(g.t).locate(t);
-    t0 = h.i;
-    wt = h.w;
-  }
+  const TimeBracket tb = time_bracket(g.t, t, options_.time_outside, options_.source);
+  const std::size_t t0 = tb.i;
+  const double wt = tb.w;
   const bool two_times = wt > 0.0;
   const Axis ax(g.x), ay(g.y), az(g.z);
   const std::size_t nx = g.x.size(), nxy = nx * g.y.size(), per_t = g.nodes_per_snapshot();

@@ -40,6 +40,15 @@ struct GriddedFieldOptions {
   std::string source;                               // the file, for error messages
 };
 
+// Where t falls among strictly increasing snapshot times: the earlier snapshot and the weight of the next one (0
+// with a single snapshot: steady), after applying `outside` beyond them. Throws FieldError naming `source` for a t
+// beyond them with TimeBoundary::error. Shared by every field made of snapshots (coupling/'s direct mode too).
+struct TimeBracket {
+  std::size_t i = 0;
+  double w = 0.0;
+};
+TimeBracket time_bracket(std::span<const double> times, double t, TimeBoundary outside, const std::string& source);
+
 class GriddedField final : public VelocityField {
  public:
   // Throws std::invalid_argument with grid_data_error() for an unusable grid.

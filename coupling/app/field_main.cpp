@@ -1,0 +1,286 @@
+// polyfloe-field (also run as `polyfloe field ...`): OpenFOAM velocity -> ocean field files.
+// Exit codes: 0 done, 2 bad input (arguments, case, file), 1 anything else.
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "field_vtk.h"
+#include "forcing/gridded_field.h"
+#include "io/field_file.h"
+#include "openfoam_case.h"
+#include "probed_field.h"
+#include "resample.h"
+
+#ifndef POLYFLOE_VERSION
+#define POLYFLOE_VERSION "unknown"
+#endif
+
+namespace {
+
+using namespace polyfloe;
+namespace fs = std::filesystem;
+
+const char* kUsage = R"(polyfloe field: ocean currents from OpenFOAM for PolyFloe scenes.
+
+Usage:
+  polyfloe field import CASE -o FILE [options]   resample CASE's velocity U onto a grid: an ocean field file
+                                                 (HDF5, FILE) and FILE's .pvd series for ParaView
+  polyfloe field info FILE                       what a field file holds
+  polyfloe field compare CASE FILE [options]     the gridding error: FILE's interpolation against probing
+                                                 CASE's mesh directly, at random points in the water
+
+Import options:
+  -o, --output FILE       the field file to write (required), e.g. field.h5; FILE.pvd goes beside it
+  --cell M                grid spacing in x and y [m], > 0 (default 10)
+  --bounds X0,Y0,X1,Y1    the grid's extent [m] (default: the mesh's)
+  --z Z1,Z2,...           levels [m], heights (<= 0 in the water) spanning the floe drafts
+                          (default -2,-1,-0.5,0); a 2-D case (one cell through the depth) keeps one
+  --times WHICH           auto (default: the latest time of a steady case, every time of a transient one),
+                          all, latest, or a list T1,T2,... [s] of time directories
+  --no-vtk                write no .pvd/.vtr series
+Compare options:
+  --points N              random points per snapshot and level (default 20000)
+  --seed S                random seed (default 1)
+
+The file layout is in docs/scene-reference.md ("Field files"); a scene uses it with
+  forcing: {ocean: {field: {type: file, path: FILE, outside: clamp}}}
+Exit codes: 0 done, 2 bad input (arguments, case or file), 1 other failure.
+)";
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::vector<double> numbers(const std::string& opt, const std::string& text) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(x))
+      throw UsageError(opt + ": expected numbers separated by commas, got '" + text + "'");
+    v.push_back(x);
+  }
+  if (v.empty()) throw UsageError(opt + ": expected numbers separated by commas, got '" + text + "'");
+  return v;
+}
+
+struct Args {
+  std::string command;
+  std::vector<std::string> positional;
+  fs::path output;
+  coupling::GridSpec grid;
+  coupling::TimeSelection times;
+  bool vtk = true;
+  long points = 20000;
+  unsigned seed = 1;
+};
+
+Args parse(int argc, char** argv) {
+  Args a;
+  std::vector<std::string> v(argv + 1, argv + argc);
+  if (v.empty()) throw UsageError("no command given");
+  a.command = v[0];
+  if (a.command != "import" && a.command != "info" && a.command != "compare")
+    throw UsageError("unknown command '" + a.command + "' (import, info, compare)");
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const std::string& o = v[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= v.size()) throw UsageError(o + " needs a value");
+      return v[++i];
+    };
+    if (o == "-o" || o == "--output") {
+      a.output = value();
+    } else if (o == "--cell") {
+      const std::vector<double> c = numbers(o, value());
+      if (c.size() != 1 || !(c[0] > 0.0)) throw UsageError("--cell: expected one spacing > 0 m");
+      a.grid.cell = c[0];
+    } else if (o == "--bounds") {
+      const std::vector<double> b = numbers(o, value());
+      if (b.size() != 4 || !(b[2] > b[0]) || !(b[3] > b[1]))
+        throw UsageError("--bounds: expected X0,Y0,X1,Y1 [m] with X1 > X0 and Y1 > Y0");
+      a.grid.bounds = Eigen::Vector4d(b[0], b[1], b[2], b[3]);
+    } else if (o == "--z") {
+      a.grid.z = numbers(o, value());
+    } else if (o == "--times") {
+      const std::string w = value();
+      using K = coupling::TimeSelection::Kind;
+      if (w == "auto") a.times.kind = K::automatic;
+      else if (w == "all") a.times.kind = K::all;
+      else if (w == "latest") a.times.kind = K::latest;
+      else {
+        a.times.kind = K::listed;
+        a.times.times = numbers(o, w);
+      }
+    } else if (o == "--no-vtk") {
+      a.vtk = false;
+    } else if (o == "--points") {
+      const std::vector<double> n = numbers(o, value());
+      if (n.size() != 1 || !(n[0] >= 1.0) || n[0] > 1e8 || n[0] != std::floor(n[0]))
+        throw UsageError("--points: expected a whole number in [1, 1e8]");
+      a.points = static_cast<long>(n[0]);
+    } else if (o == "--seed") {
+      const std::vector<double> n = numbers(o, value());
+      if (n.size() != 1 || n[0] < 0 || n[0] > 4e9 || n[0] != std::floor(n[0]))
+        throw UsageError("--seed: expected a whole number in [0, 4e9]");
+      a.seed = static_cast<unsigned>(n[0]);
+    } else if (o == "-h" || o == "--help") {
+      std::cout << kUsage;
+      std::exit(0);
+    } else if (!o.empty() && o[0] == '-') {
+      throw UsageError("unknown option '" + o + "'");
+    } else {
+      a.positional.push_back(o);
+    }
+  }
+  const std::size_t want = a.command == "compare" ? 2 : 1;
+  if (a.positional.size() != want)
+    throw UsageError(a.command + " takes " + (want == 2 ? "CASE FILE" : a.command == "info" ? "FILE" : "CASE") +
+                     ", got " + std::to_string(a.positional.size()) + " argument(s)");
+  if (a.command == "import" && a.output.empty()) throw UsageError("import needs -o FILE");
+  return a;
+}
+
+double wet_fraction(const forcing::GridData& g) {
+  std::size_t wet = 0;
+  for (const auto m : g.wet) wet += m;
+  return static_cast<double>(wet) / static_cast<double>(g.wet.size());
+}
+
+double max_speed(const forcing::GridData& g) {
+  double s = 0.0;
+  for (std::size_t k = 0; k < g.u.size(); ++k) s = std::max(s, std::hypot(g.u[k], g.v[k]));
+  return s;
+}
+
+std::string axis_text(const std::vector<double>& a, const char* unit) {
+  std::ostringstream os;
+  os << a.size() << " from " << a.front() << " to " << a.back() << " " << unit;
+  if (a.size() > 1 && a.size() <= 12) {
+    os << " (";
+    for (std::size_t i = 0; i < a.size(); ++i) os << (i ? ", " : "") << a[i];
+    os << ")";
+  }
+  return os.str();
+}
+
+void describe(const io::FieldFile& f) {
+  const forcing::GridData& g = f.grid;
+  std::cout << "  x: " << axis_text(g.x, "m") << "\n  y: " << axis_text(g.y, "m") << "\n  z: " << axis_text(g.z, "m")
+            << "\n  t: " << axis_text(g.t, "s") << (g.t.size() == 1 ? " (steady)" : "") << "\n  water: "
+            << 100.0 * wet_fraction(g) << " % of the nodes; speed up to " << max_speed(g) << " m/s\n";
+}
+
+int import(const Args& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const fs::path case_dir = a.positional[0];
+  const bool steady = coupling::case_is_steady(case_dir);
+  const std::vector<coupling::MeshSnapshot> snaps = coupling::read_openfoam_case(case_dir, a.times);
+  io::FieldFile f = coupling::resample(snaps, a.grid, steady, fs::absolute(case_dir).lexically_normal().string());
+  f.info.created_by = std::string("polyfloe field import ") + POLYFLOE_VERSION;
+  io::write_field_file(a.output, f);
+  std::size_t frames = 0;
+  fs::path pvd = a.output;
+  pvd.replace_extension(".pvd");
+  if (a.vtk) frames = coupling::write_field_vtk(pvd, f);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "Imported " << case_dir.string() << " (" << snaps.front().cells() << " cells, "
+            << (steady ? "steady" : "transient") << ", " << snaps.size() << " time(s)) into " << a.output.string()
+            << " in " << wall << " s:\n";
+  describe(f);
+  if (frames) std::cout << "  ParaView: " << pvd.string() << " (" << frames << " frame(s))\n";
+  return 0;
+}
+
+int info(const Args& a) {
+  const io::FieldFile f = io::read_field_file(a.positional[0]);
+  std::cout << a.positional[0] << ": ocean field from " << (f.info.source.empty() ? "?" : f.info.source)
+            << ", written by " << (f.info.created_by.empty() ? "?" : f.info.created_by) << "\n";
+  describe(f);
+  return 0;
+}
+
+int compare(const Args& a) {
+  const fs::path case_dir = a.positional[0], file = a.positional[1];
+  const io::FieldFile f = io::read_field_file(file);
+  const forcing::GridData& g = f.grid;
+  auto snaps = std::make_shared<std::vector<coupling::MeshSnapshot>>(coupling::read_openfoam_case(case_dir, a.times));
+  if (snaps->size() != g.t.size())
+    throw coupling::CouplingError(file.string() + " holds " + std::to_string(g.t.size()) + " snapshot(s), " +
+                                  case_dir.string() + " " + std::to_string(snaps->size()) +
+                                  " (choose the same with --times)");
+  forcing::GriddedFieldOptions opt;
+  opt.source = file.string();
+  const forcing::GriddedField gridded(std::make_shared<const forcing::GridData>(g), opt);
+  std::mt19937_64 rng(a.seed);
+  std::uniform_real_distribution<double> ux(g.x.front(), g.x.back()), uy(g.y.front(), g.y.back());
+  std::cout << "Gridding error of " << file.string() << " against " << case_dir.string() << " (" << a.points
+            << " random points in the water per snapshot and level):\n";
+  double worst = 0.0;
+  for (std::size_t it = 0; it < g.t.size(); ++it)
+    for (const double z : g.z) {
+      double sum2 = 0.0, max = 0.0, top = 0.0;
+      long n = 0;
+      const double t_file = g.t[it];
+      for (long tries = 0; n < a.points && tries < 50 * a.points; ++tries) {
+        const forcing::Vec3 p{ux(rng), uy(rng), z};
+        Eigen::Vector3d ref3;
+        if (!(*snaps)[it].sample(p, ref3)) continue;
+        forcing::Vec2 grid_u;
+        try {
+          grid_u = gridded.at(p, t_file);
+        } catch (const forcing::FieldError&) {
+          continue;  // in the mesh but not in the grid's water: the land mask's edge, measured separately
+        }
+        const double e = (grid_u - ref3.head<2>()).norm();
+        sum2 += e * e;
+        max = std::max(max, e);
+        top = std::max(top, ref3.head<2>().norm());
+        ++n;
+      }
+      const double rms = n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
+      worst = std::max(worst, max);
+      std::cout << "  t = " << t_file << " s, z = " << z << " m: RMS " << rms << " m/s, max " << max
+                << " m/s (the speed reaches " << top << " m/s; " << n << " points)\n";
+    }
+  std::cout << "Largest difference: " << worst << " m/s\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  Args a;
+  try {
+    a = parse(argc, argv);
+  } catch (const UsageError& e) {
+    std::cerr << "polyfloe field: " << e.what() << "\n\n" << kUsage;
+    return 2;
+  }
+  try {
+    if (a.command == "import") return import(a);
+    if (a.command == "info") return info(a);
+    return compare(a);
+  } catch (const coupling::CouplingError& e) {
+    std::cerr << "polyfloe field: error: " << e.what() << "\n";
+    return 2;
+  } catch (const io::FieldFileError& e) {
+    std::cerr << "polyfloe field: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "polyfloe field: error: " << e.what() << "\n";
+    return 1;
+  }
+}

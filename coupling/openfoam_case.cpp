@@ -1,0 +1,189 @@
+#include "openfoam_case.h"
+
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkGenericCell.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkOpenFOAMReader.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStaticCellLocator.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace polyfloe::coupling {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const fs::path& dir, const std::string& what) {
+  throw CouplingError(dir.string() + ": " + what);
+}
+
+void check_case(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) fail(dir, "no such folder (expected an OpenFOAM case)");
+  if (!fs::is_regular_file(dir / "system" / "controlDict", ec))
+    fail(dir, "not an OpenFOAM case (no system/controlDict)");
+  if (!fs::is_directory(dir / "constant" / "polyMesh", ec))
+    fail(dir, "no mesh (constant/polyMesh is missing): run the case's Allrun, or blockMesh, first");
+}
+
+std::string times_text(const std::vector<double>& t) {
+  std::ostringstream os;
+  for (std::size_t i = 0; i < t.size(); ++i) os << (i ? ", " : "") << t[i];
+  return os.str();
+}
+
+// The static mesh and its locator, shared by the snapshots of a case (OpenFOAM's constant/polyMesh).
+struct Mesh {
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  vtkSmartPointer<vtkStaticCellLocator> locator;
+  int max_cell_size = 0;
+};
+
+}  // namespace
+
+struct MeshSnapshot::Impl {
+  std::shared_ptr<const Mesh> mesh;
+  std::vector<double> u;  // 3 per mesh point [m/s]
+};
+
+MeshSnapshot::MeshSnapshot() = default;
+MeshSnapshot::~MeshSnapshot() = default;
+MeshSnapshot::MeshSnapshot(MeshSnapshot&&) noexcept = default;
+MeshSnapshot& MeshSnapshot::operator=(MeshSnapshot&&) noexcept = default;
+
+std::size_t MeshSnapshot::cells() const {
+  return impl_ ? static_cast<std::size_t>(impl_->mesh->grid->GetNumberOfCells()) : 0;
+}
+
+bool MeshSnapshot::sample(const Eigen::Vector3d& p, Eigen::Vector3d& u) const {
+  // One VTK cell and weight buffer per thread: FindCell with a caller's vtkGenericCell only reads the locator and
+  // the mesh, so threads may sample at once.
+  thread_local vtkSmartPointer<vtkGenericCell> cell = vtkSmartPointer<vtkGenericCell>::New();
+  thread_local std::vector<double> weights;
+  const Mesh& m = *impl_->mesh;
+  if (weights.size() < static_cast<std::size_t>(m.max_cell_size)) weights.resize(static_cast<std::size_t>(m.max_cell_size));
+  double x[3] = {p.x(), p.y(), p.z()}, pcoords[3];
+  const vtkIdType id = m.locator->FindCell(x, 0.0, cell, pcoords, weights.data());
+  if (id < 0) return false;
+  vtkIdList* ids = cell->GetPointIds();
+  u.setZero();
+  for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) {
+    const double* v = impl_->u.data() + 3 * ids->GetId(k);
+    u += weights[static_cast<std::size_t>(k)] * Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+  return true;
+}
+
+std::vector<double> case_times(const fs::path& dir) {
+  check_case(dir);
+  std::vector<double> times;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    if (!e.is_directory(ec)) continue;
+    const std::string name = e.path().filename().string();
+    double t = 0.0;
+    const auto [end, err] = std::from_chars(name.data(), name.data() + name.size(), t);
+    if (err != std::errc() || end != name.data() + name.size() || !std::isfinite(t)) continue;
+    if (fs::is_regular_file(e.path() / "U", ec) || fs::is_regular_file(e.path() / "U.gz", ec)) times.push_back(t);
+  }
+  std::sort(times.begin(), times.end());
+  if (times.empty()) fail(dir, "no time directory holds a velocity field U");
+  return times;
+}
+
+bool case_is_steady(const fs::path& dir) {
+  std::ifstream in(dir / "system" / "fvSchemes");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  static const std::regex steady(R"(ddtSchemes\s*\{[^}]*default\s+steadyState)");
+  return std::regex_search(ss.str(), steady);
+}
+
+std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSelection& which) {
+  const std::vector<double> available = case_times(dir);
+  std::vector<double> chosen;
+  using Kind = TimeSelection::Kind;
+  const Kind kind = which.kind == Kind::automatic ? (case_is_steady(dir) ? Kind::latest : Kind::all) : which.kind;
+  switch (kind) {
+    case Kind::automatic:
+    case Kind::all: chosen = available; break;
+    case Kind::latest: chosen = {available.back()}; break;
+    case Kind::listed:
+      if (which.times.empty()) fail(dir, "no time chosen");
+      for (const double t : which.times) {
+        const auto it = std::find_if(available.begin(), available.end(),
+                                     [t](double a) { return std::abs(a - t) <= 1e-6 * std::max(1.0, std::abs(t)); });
+        if (it == available.end())
+          fail(dir, "no time directory " + times_text({t}) + " with U (the case has " + times_text(available) + ")");
+        chosen.push_back(*it);
+      }
+      std::sort(chosen.begin(), chosen.end());
+      chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+      break;
+  }
+
+  vtkNew<vtkOpenFOAMReader> reader;
+  reader->SetFileName((dir / "system" / "controlDict").c_str());
+  reader->SkipZeroTimeOff();
+  reader->UpdateInformation();
+  reader->DisableAllPatchArrays();
+  reader->SetPatchArrayStatus("internalMesh", 1);
+  reader->DisableAllCellArrays();
+  reader->SetCellArrayStatus("U", 1);  // only U: other fields may hold macros the reader cannot expand
+  reader->DisableAllPointArrays();
+  reader->DisableAllLagrangianArrays();
+  reader->CreateCellToPointOn();
+
+  std::shared_ptr<Mesh> mesh;
+  std::vector<MeshSnapshot> out;
+  for (const double t : chosen) {
+    reader->UpdateTimeStep(t);
+    auto* blocks = vtkMultiBlockDataSet::SafeDownCast(reader->GetOutput());
+    vtkUnstructuredGrid* grid =
+        blocks && blocks->GetNumberOfBlocks() > 0 ? vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(0)) : nullptr;
+    if (!grid || grid->GetNumberOfCells() == 0) fail(dir, "VTK's OpenFOAM reader found no internal mesh");
+    vtkDataArray* u = grid->GetPointData()->GetArray("U");
+    if (!u || u->GetNumberOfComponents() != 3)
+      fail(dir, "no velocity U at time " + times_text({t}) + " (the reader could not read " + times_text({t}) + "/U)");
+    if (!mesh || mesh->grid->GetNumberOfPoints() != grid->GetNumberOfPoints() ||
+        mesh->grid->GetNumberOfCells() != grid->GetNumberOfCells()) {
+      mesh = std::make_shared<Mesh>();
+      mesh->grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+      mesh->grid->CopyStructure(grid);
+      mesh->locator = vtkSmartPointer<vtkStaticCellLocator>::New();
+      mesh->locator->SetDataSet(mesh->grid);
+      mesh->locator->BuildLocator();
+      mesh->max_cell_size = mesh->grid->GetMaxCellSize();
+    }
+    MeshSnapshot s;
+    s.impl_ = std::make_unique<MeshSnapshot::Impl>();
+    s.impl_->mesh = mesh;
+    s.impl_->u.resize(3 * static_cast<std::size_t>(u->GetNumberOfTuples()));
+    for (vtkIdType k = 0; k < u->GetNumberOfTuples(); ++k)
+      for (int c = 0; c < 3; ++c) {
+        const double v = u->GetComponent(k, c);
+        if (!std::isfinite(v)) fail(dir, "U at time " + times_text({t}) + " is not finite at mesh point " + std::to_string(k));
+        s.impl_->u[3 * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)] = v;
+      }
+    s.time_ = t;
+    double b[6];
+    mesh->grid->GetBounds(b);
+    for (int k = 0; k < 6; ++k) s.bounds_[k] = b[k];
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace polyfloe::coupling

@@ -1,0 +1,108 @@
+#include "resample.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace polyfloe::coupling {
+
+namespace {
+
+// Nodes from a to b at spacing h, the last one at or beyond b.
+std::vector<double> nodes(double a, double b, double h) {
+  const std::size_t n = static_cast<std::size_t>(std::ceil((b - a) / h - 1e-9)) + 1;
+  std::vector<double> v(std::max<std::size_t>(n, 2));
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = a + h * static_cast<double>(i);
+  return v;
+}
+
+}  // namespace
+
+std::string grid_spec_error(const GridSpec& g) {
+  if (!(g.cell > 0.0) || !std::isfinite(g.cell)) return "the cell size must be > 0 m";
+  if (g.bounds) {
+    const Eigen::Vector4d& b = *g.bounds;
+    if (!b.allFinite() || !(b[2] > b[0]) || !(b[3] > b[1])) return "the bounds must be x0, y0, x1, y1 with x1 > x0 and y1 > y0";
+    if ((b[2] - b[0]) / g.cell > 1e5 || (b[3] - b[1]) / g.cell > 1e5) return "more than 100,000 nodes along an axis";
+  }
+  if (g.z.empty()) return "no z level";
+  for (const double z : g.z)
+    if (!std::isfinite(z)) return "the z levels must be finite";
+  return {};
+}
+
+io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpec& spec, bool steady,
+                       const std::string& source) {
+  if (std::string e = grid_spec_error(spec); !e.empty()) throw CouplingError(source + ": " + e);
+  if (snapshots.empty()) throw CouplingError(source + ": no snapshot to resample");
+  const auto& mb = snapshots.front().bounds();
+  const Eigen::Vector4d b = spec.bounds.value_or(Eigen::Vector4d(mb[0], mb[2], mb[1], mb[3]));
+  if ((b[2] - b[0]) / spec.cell > 1e5 || (b[3] - b[1]) / spec.cell > 1e5)
+    throw CouplingError(source + ": more than 100,000 nodes along an axis; choose a larger cell");
+
+  io::FieldFile f;
+  forcing::GridData& g = f.grid;
+  g.x = nodes(b[0], b[2], spec.cell);
+  g.y = nodes(b[1], b[3], spec.cell);
+  // Levels clamped into the mesh and unique; each is sampled a hair inside the mesh's top and bottom faces, so the
+  // locator finds a cell for a level on the sea surface.
+  const double zlo = mb[4], zhi = mb[5], inset = 1e-7 * std::max(1.0, zhi - zlo);
+  for (const double z : spec.z) g.z.push_back(std::clamp(z, zlo, zhi));
+  std::sort(g.z.begin(), g.z.end());
+  g.z.erase(std::unique(g.z.begin(), g.z.end(), [](double a, double c) { return std::abs(a - c) < 1e-9; }), g.z.end());
+  const auto probe_z = [&](double z) { return std::clamp(z, zlo + inset, zhi - inset); };
+  for (const MeshSnapshot& s : snapshots) g.t.push_back(steady && snapshots.size() == 1 ? 0.0 : s.time());
+
+  const std::size_t per = g.nodes_per_snapshot();
+  g.u.assign(per * g.t.size(), 0.0);
+  g.v.assign(g.u.size(), 0.0);
+  f.w.assign(g.u.size(), 0.0);
+  g.wet.assign(per, 0);
+  Eigen::Vector3d u;
+  for (std::size_t it = 0; it < snapshots.size(); ++it)
+    for (std::size_t iz = 0; iz < g.z.size(); ++iz)
+      for (std::size_t iy = 0; iy < g.y.size(); ++iy)
+        for (std::size_t ix = 0; ix < g.x.size(); ++ix) {
+          if (!snapshots[it].sample({g.x[ix], g.y[iy], probe_z(g.z[iz])}, u)) continue;
+          const std::size_t k = g.index(it, iz, iy, ix);
+          g.u[k] = u.x();
+          g.v[k] = u.y();
+          f.w[k] = u.z();
+          g.wet[k % per] = 1;
+        }
+
+  // A depth-averaged (2-D) case has the same velocity at every level (to the rounding of the interpolation
+  // through the one cell's depth): keep one.
+  double top = 0.0;
+  for (std::size_t k = 0; k < g.u.size(); ++k) top = std::max(top, std::hypot(g.u[k], g.v[k]));
+  const double same_tol = 1e-9 * std::max(top, 1e-30);
+  bool same = g.z.size() > 1;
+  const std::size_t nxy = g.x.size() * g.y.size();
+  for (std::size_t it = 0; same && it < g.t.size(); ++it)
+    for (std::size_t iz = 1; same && iz < g.z.size(); ++iz)
+      for (std::size_t k = 0; same && k < nxy; ++k) {
+        const std::size_t a = g.index(it, 0, 0, 0) + k, c = g.index(it, iz, 0, 0) + k;
+        same = std::abs(g.u[a] - g.u[c]) <= same_tol && std::abs(g.v[a] - g.v[c]) <= same_tol &&
+               g.wet[k] == g.wet[iz * nxy + k];
+      }
+  if (same) {
+    forcing::GridData one = g;
+    one.z = {g.z.back()};
+    one.u.clear();
+    one.v.clear();
+    std::vector<double> w;
+    for (std::size_t it = 0; it < g.t.size(); ++it) {
+      const std::size_t a = g.index(it, 0, 0, 0);
+      one.u.insert(one.u.end(), g.u.begin() + static_cast<std::ptrdiff_t>(a), g.u.begin() + static_cast<std::ptrdiff_t>(a + nxy));
+      one.v.insert(one.v.end(), g.v.begin() + static_cast<std::ptrdiff_t>(a), g.v.begin() + static_cast<std::ptrdiff_t>(a + nxy));
+      w.insert(w.end(), f.w.begin() + static_cast<std::ptrdiff_t>(a), f.w.begin() + static_cast<std::ptrdiff_t>(a + nxy));
+    }
+    one.wet.assign(g.wet.begin(), g.wet.begin() + static_cast<std::ptrdiff_t>(nxy));
+    f.grid = std::move(one);
+    f.w = std::move(w);
+  }
+  f.info.source = source;
+  return f;
+}
+
+}  // namespace polyfloe::coupling
