@@ -61,3 +61,11 @@ polyfloe_binary() {
   fi
   echo "$build/polyfloe"
 }
+
+# of_mesh: a clean case with the $MESH mesh (system/meshSize.$MESH -> system/meshSize; blockMesh, checkMesh).
+of_mesh() {
+  of_clean
+  cp "system/meshSize.$MESH" system/meshSize
+  of_run blockMesh
+  of_run checkMesh
+}
