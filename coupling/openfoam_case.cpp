@@ -16,7 +16,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
-#include <regex>
+#include <limits>
 #include <sstream>
 
 namespace polyfloe::coupling {
@@ -49,6 +49,7 @@ struct Mesh {
   vtkSmartPointer<vtkUnstructuredGrid> grid;
   vtkSmartPointer<vtkStaticCellLocator> locator;
   int max_cell_size = 0;
+  double min_horizontal = 0.0;  // [m]
 };
 
 }  // namespace
@@ -62,6 +63,8 @@ MeshSnapshot::MeshSnapshot() = default;
 MeshSnapshot::~MeshSnapshot() = default;
 MeshSnapshot::MeshSnapshot(MeshSnapshot&&) noexcept = default;
 MeshSnapshot& MeshSnapshot::operator=(MeshSnapshot&&) noexcept = default;
+
+double MeshSnapshot::min_cell_size() const { return impl_ ? impl_->mesh->min_horizontal : 0.0; }
 
 std::size_t MeshSnapshot::cells() const {
   return impl_ ? static_cast<std::size_t>(impl_->mesh->grid->GetNumberOfCells()) : 0;
@@ -107,8 +110,19 @@ bool case_is_steady(const fs::path& dir) {
   std::ifstream in(dir / "system" / "fvSchemes");
   std::stringstream ss;
   ss << in.rdbuf();
-  static const std::regex steady(R"(ddtSchemes\s*\{[^}]*default\s+steadyState)");
-  return std::regex_search(ss.str(), steady);
+  // ddtSchemes { ... default steadyState; ... } (a plain scan: GCC 12 warns inside <regex> under the sanitizers)
+  const std::string text = ss.str();
+  const std::size_t key = text.find("ddtSchemes");
+  if (key == std::string::npos) return false;
+  const std::size_t open = text.find('{', key), close = text.find('}', key);
+  if (open == std::string::npos || close == std::string::npos || close < open) return false;
+  std::istringstream block(text.substr(open + 1, close - open - 1));
+  std::string word, previous;
+  while (block >> word) {
+    if (previous == "default" && word.rfind("steadyState", 0) == 0) return true;
+    previous = word;
+  }
+  return false;
 }
 
 std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSelection& which) {
@@ -166,6 +180,12 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
       mesh->locator->SetDataSet(mesh->grid);
       mesh->locator->BuildLocator();
       mesh->max_cell_size = mesh->grid->GetMaxCellSize();
+      mesh->min_horizontal = std::numeric_limits<double>::infinity();
+      for (vtkIdType c = 0; c < mesh->grid->GetNumberOfCells(); ++c) {
+        double cb[6];
+        mesh->grid->GetCellBounds(c, cb);
+        mesh->min_horizontal = std::min({mesh->min_horizontal, cb[1] - cb[0], cb[3] - cb[2]});
+      }
     }
     MeshSnapshot s;
     s.impl_ = std::make_unique<MeshSnapshot::Impl>();

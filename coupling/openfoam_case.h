@@ -47,6 +47,8 @@ class MeshSnapshot {
   double time() const { return time_; }                    // [s]
   const Eigen::Matrix<double, 6, 1>& bounds() const { return bounds_; }  // xmin, xmax, ymin, ymax, zmin, zmax [m]
   std::size_t cells() const;
+  // The smallest horizontal extent (x or y) of a cell's bounding box [m]: the finest detail the mesh resolves.
+  double min_cell_size() const;
   // U at p [m/s] into u; false where p is farther than the locator tolerance (1e-9 of the mesh diagonal) from
   // every cell. Safe to call from several threads at once (each thread keeps its own VTK cell and weights).
   bool sample(const Eigen::Vector3d& p, Eigen::Vector3d& u) const;

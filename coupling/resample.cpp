@@ -19,7 +19,7 @@ std::vector<double> nodes(double a, double b, double h) {
 }  // namespace
 
 std::string grid_spec_error(const GridSpec& g) {
-  if (!(g.cell > 0.0) || !std::isfinite(g.cell)) return "the cell size must be > 0 m";
+  if (!(g.cell >= 0.0) || !std::isfinite(g.cell)) return "the cell size must be > 0 m (or 0: the mesh's finest cell)";
   if (g.bounds) {
     const Eigen::Vector4d& b = *g.bounds;
     if (!b.allFinite() || !(b[2] > b[0]) || !(b[3] > b[1])) return "the bounds must be x0, y0, x1, y1 with x1 > x0 and y1 > y0";
@@ -37,13 +37,15 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
   if (snapshots.empty()) throw CouplingError(source + ": no snapshot to resample");
   const auto& mb = snapshots.front().bounds();
   const Eigen::Vector4d b = spec.bounds.value_or(Eigen::Vector4d(mb[0], mb[2], mb[1], mb[3]));
-  if ((b[2] - b[0]) / spec.cell > 1e5 || (b[3] - b[1]) / spec.cell > 1e5)
+  const double cell = spec.cell > 0.0 ? spec.cell : snapshots.front().min_cell_size();
+  if (!(cell > 0.0)) throw CouplingError(source + ": the mesh has cells of no horizontal extent; give the cell size");
+  if ((b[2] - b[0]) / cell > 1e5 || (b[3] - b[1]) / cell > 1e5)
     throw CouplingError(source + ": more than 100,000 nodes along an axis; choose a larger cell");
 
   io::FieldFile f;
   forcing::GridData& g = f.grid;
-  g.x = nodes(b[0], b[2], spec.cell);
-  g.y = nodes(b[1], b[3], spec.cell);
+  g.x = nodes(b[0], b[2], cell);
+  g.y = nodes(b[1], b[3], cell);
   // Levels clamped into the mesh and unique; each is sampled a hair inside the mesh's top and bottom faces, so the
   // locator finds a cell for a level on the sea surface.
   const double zlo = mb[4], zhi = mb[5], inset = 1e-7 * std::max(1.0, zhi - zlo);

@@ -13,7 +13,7 @@ namespace polyfloe::coupling {
 
 struct GridSpec {
   std::optional<Eigen::Vector4d> bounds;    // x0, y0, x1, y1 [m]; default: the mesh's horizontal bounds
-  double cell = 10.0;                        // node spacing in x and y [m], > 0
+  double cell = 0.0;                         // node spacing in x and y [m], > 0; 0 = the mesh's finest cell
   std::vector<double> z{-2.0, -1.0, -0.5, 0.0};  // levels [m] spanning floe drafts; clamped into the mesh
 };
 

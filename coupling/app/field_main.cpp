@@ -37,7 +37,8 @@ Usage:
 
 Import options:
   -o, --output FILE       the field file to write (required), e.g. field.h5; FILE.pvd goes beside it
-  --cell M                grid spacing in x and y [m], > 0 (default 10)
+  --cell M|auto           grid spacing in x and y [m], > 0 (default auto: the mesh's finest horizontal
+                          cell, which resolves what the mesh resolves; see docs/performance.md)
   --bounds X0,Y0,X1,Y1    the grid's extent [m] (default: the mesh's)
   --z Z1,Z2,...           levels [m], heights (<= 0 in the water) spanning the floe drafts
                           (default -2,-1,-0.5,0); a 2-D case (one cell through the depth) keeps one
@@ -100,7 +101,12 @@ Args parse(int argc, char** argv) {
     if (o == "-o" || o == "--output") {
       a.output = value();
     } else if (o == "--cell") {
-      const std::vector<double> c = numbers(o, value());
+      const std::string w = value();
+      if (w == "auto") {
+        a.grid.cell = 0.0;
+        continue;
+      }
+      const std::vector<double> c = numbers(o, w);
       if (c.size() != 1 || !(c[0] > 0.0)) throw UsageError("--cell: expected one spacing > 0 m");
       a.grid.cell = c[0];
     } else if (o == "--bounds") {
@@ -192,7 +198,8 @@ int import(const Args& a) {
   pvd.replace_extension(".pvd");
   if (a.vtk) frames = coupling::write_field_vtk(pvd, f);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "Imported " << case_dir.string() << " (" << snaps.front().cells() << " cells, "
+  std::cout << "Imported " << case_dir.string() << " (" << snaps.front().cells() << " cells, the finest "
+            << snaps.front().min_cell_size() << " m across, "
             << (steady ? "steady" : "transient") << ", " << snaps.size() << " time(s)) into " << a.output.string()
             << " in " << wall << " s:\n";
   describe(f);

@@ -24,6 +24,7 @@
 #include "forcing/drift.h"
 #include "forcing/quadrature.h"
 #include "scene/floe_field.h"
+#include "quadrature_samples.h"
 #include "thread_clock.h"
 
 using namespace polyfloe;
@@ -86,19 +87,8 @@ std::vector<Floe> floes_in(int field) {
   return out;
 }
 
-// World-frame samples of a rule on a polygon (levers from `centre`).
-struct Samples {
-  std::vector<double> rx, ry, w;
-};
-void add_rule(const std::vector<Vec2>& poly, const Vec2& centre, Quadrature q, Samples& s) {
-  std::vector<forcing::QuadraturePoint> pts;
-  forcing::polygon_quadrature(poly, q, pts);
-  for (const auto& p : pts) {
-    s.rx.push_back(p.point.x() - centre.x());
-    s.ry.push_back(p.point.y() - centre.y());
-    s.w.push_back(p.weight);
-  }
-}
+using tsupport::add_rule;
+using tsupport::Samples;
 
 std::vector<Vec2> world_polygon(const Floe& f) {
   std::vector<Vec2> v;
@@ -107,26 +97,7 @@ std::vector<Vec2> world_polygon(const Floe& f) {
   return v;
 }
 
-// Degree-5 rule on each fan triangle cut into 4^levels congruent pieces.
-Samples refined(const Floe& f, int levels) {
-  const std::vector<Vec2> v = world_polygon(f);
-  std::vector<std::array<Vec2, 3>> tris;
-  for (std::size_t i = 0; i < v.size(); ++i) tris.push_back({f.centre, v[i], v[(i + 1) % v.size()]});
-  for (int l = 0; l < levels; ++l) {
-    std::vector<std::array<Vec2, 3>> next;
-    for (const auto& t : tris) {
-      const Vec2 a = 0.5 * (t[0] + t[1]), b = 0.5 * (t[1] + t[2]), c = 0.5 * (t[2] + t[0]);
-      next.push_back({t[0], a, c});
-      next.push_back({a, t[1], b});
-      next.push_back({c, b, t[2]});
-      next.push_back({a, b, c});
-    }
-    tris.swap(next);
-  }
-  Samples s;
-  for (const auto& t : tris) add_rule({t[0], t[1], t[2]}, f.centre, Quadrature::degree5, s);
-  return s;
-}
+Samples refined(const Floe& f, int levels) { return tsupport::refined(world_polygon(f), f.centre, levels); }
 
 forcing::DriftLoad skin(const Floe& f, const Samples& s, const forcing::VelocityField& field) {
   std::vector<forcing::Vec3> pts(s.rx.size());
