@@ -35,40 +35,21 @@ struct AxisHit {
   double w = 0.0;
 };
 
-// One axis with a fast path for uniform spacing (what the importer writes); otherwise a binary search.
-class Axis {
- public:
-  explicit Axis(const std::vector<double>& a) : a_(a) {
-    if (a.size() < 2) return;
-    const double h = (a.back() - a.front()) / static_cast<double>(a.size() - 1);
-    uniform_ = true;
-    for (std::size_t i = 1; i < a.size(); ++i)
-      if (std::abs(a[i] - (a.front() + h * static_cast<double>(i))) > 1e-9 * std::max(h, std::abs(a[i])))
-        uniform_ = false;
-    inv_h_ = 1.0 / h;
+// Where p falls on axis `a`: a direct index for uniform spacing (what the importer writes), else a binary search.
+AxisHit locate(const std::vector<double>& a, const GriddedField::AxisScale& scale, double p) {
+  if (a.size() < 2) return {};
+  p = std::clamp(p, a.front(), a.back());
+  std::size_t i;
+  if (scale.uniform) {
+    i = std::min(static_cast<std::size_t>((p - a.front()) * scale.inv_h), a.size() - 2);
+  } else {
+    i = static_cast<std::size_t>(std::upper_bound(a.begin(), a.end(), p) - a.begin());
+    i = std::clamp<std::size_t>(i, 1, a.size() - 1) - 1;
   }
-  bool contains(double p) const { return p >= a_.front() && p <= a_.back(); }
-  // p inside [front, back], or clamped to it.
-  AxisHit locate(double p) const {
-    if (a_.size() < 2) return {};
-    p = std::clamp(p, a_.front(), a_.back());
-    std::size_t i;
-    if (uniform_) {
-      const double s = (p - a_.front()) * inv_h_;
-      i = std::min(static_cast<std::size_t>(s), a_.size() - 2);
-    } else {
-      i = static_cast<std::size_t>(std::upper_bound(a_.begin(), a_.end(), p) - a_.begin());
-      i = std::clamp<std::size_t>(i, 1, a_.size() - 1) - 1;
-    }
-    const double w = (p - a_[i]) / (a_[i + 1] - a_[i]);
-    return {i, std::clamp(w, 0.0, 1.0)};
-  }
+  return {i, std::clamp((p - a[i]) / (a[i + 1] - a[i]), 0.0, 1.0)};
+}
 
- private:
-  const std::vector<double>& a_;
-  bool uniform_ = false;
-  double inv_h_ = 0.0;
-};
+bool contains(const std::vector<double>& a, double p) { return p >= a.front() && p <= a.back(); }
 
 }  // namespace
 
@@ -128,11 +109,22 @@ TimeBracket time_bracket(std::span<const double> times, double t, TimeBoundary o
   return {i, std::clamp((t - times[i]) / (times[i + 1] - times[i]), 0.0, 1.0)};
 }
 
+GriddedField::AxisScale GriddedField::scale_of(const std::vector<double>& a) {
+  if (a.size() < 2) return {};
+  const double h = (a.back() - a.front()) / static_cast<double>(a.size() - 1);
+  for (std::size_t i = 1; i < a.size(); ++i)
+    if (std::abs(a[i] - (a.front() + h * static_cast<double>(i))) > 1e-9 * std::max(h, std::abs(a[i]))) return {};
+  return {true, 1.0 / h};
+}
+
 GriddedField::GriddedField(std::shared_ptr<const GridData> grid, GriddedFieldOptions options)
     : grid_(std::move(grid)), options_(std::move(options)) {
   if (!grid_) throw std::invalid_argument("gridded field: no grid");
   if (std::string e = grid_data_error(*grid_); !e.empty())
     throw std::invalid_argument((options_.source.empty() ? "" : options_.source + ": ") + e);
+  sx_ = scale_of(grid_->x);
+  sy_ = scale_of(grid_->y);
+  sz_ = scale_of(grid_->z);
   if (!std::isfinite(options_.no_water_velocity.x()) || !std::isfinite(options_.no_water_velocity.y()))
     throw std::invalid_argument("gridded field: the no-water velocity is not finite");
 }
@@ -143,16 +135,15 @@ void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2
   const std::size_t t0 = tb.i;
   const double wt = tb.w;
   const bool two_times = wt > 0.0;
-  const Axis ax(g.x), ay(g.y), az(g.z);
   const std::size_t nx = g.x.size(), nxy = nx * g.y.size(), per_t = g.nodes_per_snapshot();
   const std::size_t dz = g.z.size() > 1 ? nxy : 0;
 
   for (std::size_t k = 0; k < points.size(); ++k) {
     const Vec3& p = points[k];
-    const bool inside = ax.contains(p.x()) && ay.contains(p.y());
+    const bool inside = contains(g.x, p.x()) && contains(g.y, p.y());
     double u = 0.0, v = 0.0, wet = 0.0;
     if (inside) {
-      const AxisHit hx = ax.locate(p.x()), hy = ay.locate(p.y()), hz = az.locate(p.z());
+      const AxisHit hx = locate(g.x, sx_, p.x()), hy = locate(g.y, sy_, p.y()), hz = locate(g.z, sz_, p.z());
       const std::size_t base = hz.i * nxy + hy.i * nx + hx.i;
       // The 8 corners (4 when the field is the same at every depth: dz = 0 and the z weight is 0).
       const std::size_t offset[8] = {0, 1, nx, nx + 1, dz, dz + 1, dz + nx, dz + nx + 1};

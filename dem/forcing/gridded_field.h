@@ -59,9 +59,17 @@ class GriddedField final : public VelocityField {
   const GridData& grid() const { return *grid_; }
   const GriddedFieldOptions& options() const { return options_; }
 
+  // An axis's spacing, found once: uniform axes are indexed directly, others searched.
+  struct AxisScale {
+    bool uniform = false;
+    double inv_h = 0.0;  // [1/m]
+  };
+
  private:
+  static AxisScale scale_of(const std::vector<double>& a);
   std::shared_ptr<const GridData> grid_;
   GriddedFieldOptions options_;
+  AxisScale sx_, sy_, sz_;
 };
 
 }  // namespace polyfloe::forcing

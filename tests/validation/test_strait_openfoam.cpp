@@ -4,6 +4,8 @@
 // Needs OpenFOAM (Debian's openfoam, installed by scripts/setup.sh): without it the test fails and says so.
 #include <gtest/gtest.h>
 
+#include <stdlib.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -38,8 +40,9 @@ std::string slurp(const fs::path& p) {
 class Strait : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = fs::temp_directory_path() / "polyfloe_test_strait";
-    fs::remove_all(root_);
+    std::string tmpl = (fs::temp_directory_path() / "polyfloe_test_strait.XXXXXX").string();
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
+    root_ = tmpl;
     fs::create_directories(root_ / "of_cases");
     fs::copy(kSource / "of_cases" / "common", root_ / "of_cases" / "common", fs::copy_options::recursive);
     fs::copy(kSource / "of_cases" / "strait", root_ / "of_cases" / "strait", fs::copy_options::recursive);
