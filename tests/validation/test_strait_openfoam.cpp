@@ -1,4 +1,4 @@
-// The strait end to end (of_cases/strait/Allrun --quick on a copy of the case): OpenFOAM's steady flow ->
+// The strait end to end (of_cases/strait/Allrun --quick on a copy of the case; of_cases/tidal the same way): OpenFOAM's steady flow ->
 // `polyfloe field import` -> the ice run -> VTK and a picture. Then the physics of the imported current and of the
 // ice it drives, and the gridding error against probing the OpenFOAM mesh directly (coupling/'s direct mode).
 // Needs OpenFOAM (Debian's openfoam, installed by scripts/setup.sh): without it the test fails and says so.
@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <random>
 #include <sstream>
 
@@ -36,32 +37,52 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-// The case, run once for every test here.
+// A copy of of_cases/<name> (and common/) run once with `Allrun --quick` for every test of a suite.
+struct CaseRun {
+  fs::path root, dir;
+  int status = -1;
+  void run(const char* name) {
+    std::string tmpl = (fs::temp_directory_path() / "polyfloe_test_of_case.XXXXXX").string();
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
+    root = tmpl;
+    fs::create_directories(root / "of_cases");
+    fs::copy(kSource / "of_cases" / "common", root / "of_cases" / "common", fs::copy_options::recursive);
+    // tidal links some files to strait's
+    fs::copy(kSource / "of_cases" / "strait", root / "of_cases" / "strait", fs::copy_options::recursive);
+    if (std::string(name) != "strait")
+      fs::copy(kSource / "of_cases" / name, root / "of_cases" / name,
+               fs::copy_options::recursive | fs::copy_options::copy_symlinks);
+    dir = root / "of_cases" / name;
+    // A copy of the source tree may hold a previous run's outputs: start clean.
+    const std::string clean = "bash " + (dir / "Allclean").string();
+    ASSERT_EQ(std::system(clean.c_str()), 0);
+    const std::string cmd = "POLYFLOE_ROOT=" + kSource.string() + " POLYFLOE_BUILD_DIR=" + kBuild.string() +
+                            " bash " + (dir / "Allrun").string() + " --quick > " + (root / "allrun.log").string() +
+                            " 2>&1";
+    status = std::system(cmd.c_str());
+  }
+  void check() const {
+    ASSERT_EQ(status, 0) << dir.filename().string()
+                         << "/Allrun --quick failed (is OpenFOAM installed? bash scripts/setup.sh):\n"
+                         << slurp(root / "allrun.log");
+  }
+  ~CaseRun() {
+    std::error_code ec;
+    if (!root.empty()) fs::remove_all(root, ec);
+  }
+};
+
 class Strait : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    std::string tmpl = (fs::temp_directory_path() / "polyfloe_test_strait.XXXXXX").string();
-    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
-    root_ = tmpl;
-    fs::create_directories(root_ / "of_cases");
-    fs::copy(kSource / "of_cases" / "common", root_ / "of_cases" / "common", fs::copy_options::recursive);
-    fs::copy(kSource / "of_cases" / "strait", root_ / "of_cases" / "strait", fs::copy_options::recursive);
-    case_ = root_ / "of_cases" / "strait";
-    // A copy of the source tree may hold a previous run's outputs: start clean.
-    const std::string clean = "bash " + (case_ / "Allclean").string();
-    ASSERT_EQ(std::system(clean.c_str()), 0);
-    const std::string cmd = "POLYFLOE_ROOT=" + kSource.string() + " POLYFLOE_BUILD_DIR=" + kBuild.string() +
-                            " bash " + (case_ / "Allrun").string() + " --quick > " + (root_ / "allrun.log").string() +
-                            " 2>&1";
-    status_ = std::system(cmd.c_str());
+    run_ = std::make_unique<CaseRun>();
+    run_->run("strait");
+    case_ = run_->dir;
   }
-  static void TearDownTestSuite() { fs::remove_all(root_); }
-  void SetUp() override {
-    ASSERT_EQ(status_, 0) << "of_cases/strait/Allrun --quick failed (is OpenFOAM installed? bash scripts/setup.sh):\n"
-                          << slurp(root_ / "allrun.log");
-  }
-  static inline fs::path root_, case_;
-  static inline int status_ = -1;
+  static void TearDownTestSuite() { run_.reset(); }
+  void SetUp() override { run_->check(); }
+  static inline std::unique_ptr<CaseRun> run_;
+  static inline fs::path case_;
 };
 
 TEST_F(Strait, AllrunLeavesTheFieldTheIceAndThePictures) {
@@ -154,6 +175,41 @@ TEST_F(Strait, IceNearTheWallsLagsTheIceInTheMiddle) {
   EXPECT_GT(mid, 0.1);  // moving with the current after a minute
   // Measured: 0.30 m/s near the walls, 0.52 m/s in the middle.
   EXPECT_LT(wall, 0.85 * mid) << "near the walls " << wall << " m/s, middle " << mid << " m/s";
+}
+
+// The tidal pulse (of_cases/tidal): every snapshot imported, and the ice run sees the current change in time.
+class Tidal : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    run_ = std::make_unique<CaseRun>();
+    run_->run("tidal");
+  }
+  static void TearDownTestSuite() { run_.reset(); }
+  void SetUp() override { run_->check(); }
+  static inline std::unique_ptr<CaseRun> run_;
+};
+
+TEST_F(Tidal, EverySnapshotIsImportedAndTheCurrentFollowsTheInflow) {
+  const io::FieldFile f = io::read_field_file(run_->dir / "field.h5");
+  ASSERT_EQ(f.grid.t.size(), 21u);  // 0, 60, ..., 1200 s
+  EXPECT_EQ(f.grid.t.front(), 0.0);
+  EXPECT_EQ(f.grid.t.back(), 1200.0);
+  forcing::GriddedFieldOptions o;
+  o.time_outside = forcing::TimeBoundary::error;
+  const forcing::GriddedField field(std::make_shared<const forcing::GridData>(f.grid), o);
+  // The inflow 0.5 (1 - cos(2 pi t / 1200 s)) m/s: at rest at 0, 1 m/s at 600 s; the basin follows it (the flow
+  // is nearly incompressible in 2-D: the whole basin answers the inlet at once), the jet 4-5 times faster.
+  const forcing::Vec3 basin{500, 500, -0.5}, jet{1700, 500, -0.5};
+  EXPECT_NEAR(field.at(basin, 0).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(field.at(basin, 600).x(), 1.06, 0.06);
+  EXPECT_GT(field.at(jet, 600).x(), 4.5);
+  EXPECT_NEAR(field.at(basin, 300).x(), 0.5 * 1.06, 0.06);
+  // Between snapshots: linear in time.
+  const double a = field.at(jet, 240).x(), b = field.at(jet, 300).x();
+  EXPECT_NEAR(field.at(jet, 270).x(), 0.5 * (a + b), 1e-12);
+  EXPECT_THROW((void)field.at(jet, 1200.5), forcing::FieldError);
+  EXPECT_TRUE(fs::is_regular_file(run_->dir / "field" / "field_0020.vtr"));
+  EXPECT_TRUE(fs::is_regular_file(run_->dir / "ice" / "openfoam" / "floes.pvd"));
 }
 
 }  // namespace
