@@ -9,18 +9,35 @@
 #   cube_plate.png        the paper's Fig. 3: tests/bench/bench_cube_plate (~10 s), data docs/data/cube_plate.json;
 #   failure_map.png       contact methods' failures and cost: tests/bench/bench_failure_map, data
 #                         docs/data/failure_map.json.
+#   strait_openfoam_vs_uniform.png  of_cases/strait/Allrun --uniform: OpenFOAM, import, two 600 s ice runs (~5 min).
+#   field_sampling.png    field-sampling error vs cost: tests/bench/bench_field_sampling on the strait case (~1 min),
+#                         data docs/data/field_sampling.json.
 #   (The sweep figures come from scripts/sweep.sh and postprocess/plot_sweep.py: docs/validation.md.)
-#   bash postprocess/make_figures.sh [channel|drift|geometry|stability|cube_plate|failure_map]...   (default: all)
+#   bash postprocess/make_figures.sh [channel|drift|geometry|stability|cube_plate|failure_map|strait|field_sampling]...
+#   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 which=("$@")
-[ ${#which[@]} -gt 0 ] || which=(channel drift geometry stability cube_plate failure_map)
+[ ${#which[@]} -gt 0 ] || which=(channel drift geometry stability cube_plate failure_map strait field_sampling)
 for w in "${which[@]}"; do
   case "$w" in
     channel)
       [ -x build/polyfloe ] || bash scripts/build.sh
       ./build/polyfloe run dem/scenes/channel.yaml -o results/channel
       /usr/bin/python3 postprocess/plot_frames.py results/channel/results.h5 -t 0 150 300 -o docs/figures/channel.png
+      ;;
+    strait)
+      bash of_cases/strait/Allrun --uniform
+      cp of_cases/strait/compare.png docs/figures/strait_openfoam_vs_uniform.png
+      ;;
+    field_sampling)
+      [ -f of_cases/strait/field.h5 ] || bash of_cases/strait/Allrun --quick
+      cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release >/dev/null
+      cmake --build build-bench --target bench_field_sampling -j "$(nproc)"
+      build-bench/tests/bench_field_sampling --case of_cases/strait --benchmark_repetitions=3 \
+        --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true \
+        --benchmark_out=docs/data/field_sampling.json --benchmark_out_format=json
+      /usr/bin/python3 postprocess/plot_field_sampling.py docs/data/field_sampling.json docs/figures/field_sampling.png
       ;;
     drift)
       cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release >/dev/null

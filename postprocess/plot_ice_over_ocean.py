@@ -47,9 +47,13 @@ def field_speed(field, t, z):
     return speed, u, wet, times[k], levels[iz]
 
 
-def draw(ax, field, results, t, z, vmax):
+def draw(ax, field, results, t, z, vmax, uniform=None):
     x, y = field["x"][:], field["y"][:]
     speed, u, wet, t_field, z_level = field_speed(field, t, z)
+    if uniform is not None:  # the run's current was uniform: draw that over the field's water
+        u = np.zeros_like(u)
+        u[..., 0], u[..., 1] = uniform
+        speed = np.where(wet, np.hypot(*uniform), np.nan)
     mesh = ax.pcolormesh(x, y, speed, shading="gouraud", cmap="Blues", vmin=0.0, vmax=vmax)
     ax.contourf(x, y, (~wet).astype(float), levels=[0.5, 1.5], colors=["0.75"])
     ax.streamplot(x, y, np.where(wet, u[..., 0], 0.0), np.where(wet, u[..., 1], 0.0), color="0.35",
@@ -65,7 +69,8 @@ def draw(ax, field, results, t, z, vmax):
     ax.set_xlim(x[0], x[-1])
     ax.set_ylim(y[0], y[-1])
     ax.set_aspect("equal")
-    ax.set_title(f"t = {times[k]:.0f} s (current: snapshot {t_field:g} s, z = {z_level:g} m)", fontsize=9)
+    what = f"uniform {np.hypot(*uniform):g} m/s" if uniform is not None else f"snapshot {t_field:g} s, z = {z_level:g} m"
+    ax.set_title(f"t = {times[k]:.0f} s (current: {what})", fontsize=9)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     return mesh
@@ -77,6 +82,8 @@ def main():
     ap.add_argument("results", help="results.h5 of a run driven by it")
     ap.add_argument("--compare", help="results.h5 of a second run, drawn as a second row over the same field")
     ap.add_argument("--labels", nargs=2, default=None, help="row labels for the two runs")
+    ap.add_argument("--compare-uniform", type=float, nargs=2, metavar=("U", "V"), default=None,
+                    help="the second run's current was uniform [m/s]: draw it instead of the field")
     ap.add_argument("-t", "--times", type=float, nargs="+", default=[0.0], help="times to draw [s] (nearest frame)")
     ap.add_argument("--z", type=float, default=None, help="field level to draw [m] (nearest; default the top)")
     ap.add_argument("--vmax", type=float, default=None, help="top of the current-speed colour scale [m/s]")
@@ -90,16 +97,16 @@ def main():
     if vmax is None:
         u = field["U"][...]
         vmax = float(np.nanmax(np.hypot(u[..., 0], u[..., 1])))
-    fig, axes = plt.subplots(len(runs), len(a.times), figsize=(5.2 * len(a.times), 3.2 * len(runs) + 0.6),
-                             squeeze=False)
+    fig, axes = plt.subplots(len(runs), len(a.times), figsize=(5.0 * len(a.times) + 1.0, 2.9 * len(runs) + 0.4),
+                             squeeze=False, constrained_layout=True)
     for row, results in enumerate(runs):
         for col, t in enumerate(a.times):
-            mesh = draw(axes[row][col], field, results, t, a.z, vmax)
+            uniform = a.compare_uniform if row == 1 else None
+            mesh = draw(axes[row][col], field, results, t, a.z, vmax, uniform)
         if a.labels:
-            axes[row][0].annotate(a.labels[row], xy=(0, 0.5), xytext=(-0.28, 0.5), xycoords="axes fraction",
-                                  rotation=90, va="center", fontsize=11)
+            axes[row][0].set_ylabel(f"{a.labels[row]}\ny [m]")
     fig.colorbar(mesh, ax=axes.ravel().tolist(), label="current speed [m/s]", shrink=0.8)
-    fig.savefig(a.output, dpi=130, bbox_inches="tight")
+    fig.savefig(a.output, dpi=130)
     for f in runs + [field]:
         f.close()
     print(f"wrote {a.output}")
