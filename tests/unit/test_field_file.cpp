@@ -115,8 +115,10 @@ TEST_F(FieldFileTest, RefusesMissingForeignAndMalformedFiles) {
   EXPECT_NE(spoil("version.h5", [](io::hdf5::Group& r) { r.set_attribute("format_version", std::int64_t{7}); })
                 .find("format_version 7 is not supported (this build reads version 1)"),
             std::string::npos);
-  {
-    const fs::path p = dir_ / "mask.h5";
+  // Written by hand (what another program might write): the sample's axes, zero velocities, and a chosen time
+  // axis and mask shape.
+  const auto by_hand = [&](const char* name, const std::vector<double>& t, const io::hdf5::Dims& mask) {
+    const fs::path p = dir_ / name;
     io::hdf5::File h(p, io::hdf5::File::Mode::truncate);
     io::hdf5::Group& r = h.root();
     r.set_attribute("format", "polyfloe-ocean-field");
@@ -125,31 +127,16 @@ TEST_F(FieldFileTest, RefusesMissingForeignAndMalformedFiles) {
     r.write_dataset<double>("x", f.grid.x);
     r.write_dataset<double>("y", f.grid.y);
     r.write_dataset<double>("z", f.grid.z);
-    r.write_dataset<double>("t", f.grid.t);
-    const std::vector<double> u(2 * 2 * 3 * 4 * 3, 0.0);
-    r.write_dataset<double>("U", u, {2, 2, 3, 4, 3});
-    const std::vector<std::uint8_t> m(2 * 4 * 3, 1);
-    r.write_dataset<std::uint8_t>("mask", m, {2, 4, 3});  // y and x swapped
+    r.write_dataset<double>("t", t);
+    r.write_dataset<double>("U", std::vector<double>(2 * 2 * 3 * 4 * 3, 0.0), {2, 2, 3, 4, 3});
+    r.write_dataset<std::uint8_t>("mask", std::vector<std::uint8_t>(24, 1), mask);
     h.close();
-    EXPECT_EQ(error_of(p), p.string() + ": /mask has shape [2, 4, 3], expected [nz, ny, nx] = [2, 3, 4] from the axes");
-  }
-  {
-    const fs::path p = dir_ / "nan.h5";
-    io::hdf5::File h(p, io::hdf5::File::Mode::truncate);
-    io::hdf5::Group& r = h.root();
-    r.set_attribute("format", "polyfloe-ocean-field");
-    r.set_attribute("format_version", std::int64_t{1});
-    const io::FieldFile f = sample_file();
-    r.write_dataset<double>("x", f.grid.x);
-    r.write_dataset<double>("y", f.grid.y);
-    r.write_dataset<double>("z", f.grid.z);
-    r.write_dataset<double>("t", std::vector<double>{0.0, 0.0});  // not increasing
-    std::vector<double> u(2 * 2 * 3 * 4 * 3, 0.0);
-    r.write_dataset<double>("U", u, {2, 2, 3, 4, 3});
-    r.write_dataset<std::uint8_t>("mask", std::vector<std::uint8_t>(24, 1), {2, 3, 4});
-    h.close();
-    EXPECT_EQ(error_of(p), p.string() + ": axis t is not strictly increasing at index 1 (0, 0)");
-  }
+    return error_of(p);
+  };
+  EXPECT_EQ(by_hand("mask.h5", {0.0, 600.0}, {2, 4, 3}),  // y and x swapped
+            (dir_ / "mask.h5").string() + ": /mask has shape [2, 4, 3], expected [nz, ny, nx] = [2, 3, 4] from the axes");
+  EXPECT_EQ(by_hand("time.h5", {0.0, 0.0}, {2, 3, 4}),
+            (dir_ / "time.h5").string() + ": axis t is not strictly increasing at index 1 (0, 0)");
 }
 
 TEST_F(FieldFileTest, AFailedWriteLeavesNoFile) {
