@@ -10,26 +10,14 @@
 #include <iterator>
 #include <string>
 
+#include "cli_support.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result polyfloe(const std::string& args) {
-  const std::string cmd = std::string(POLYFLOE_BINARY) + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using Result = polyfloe::tsupport::CommandResult;
+using polyfloe::tsupport::run_polyfloe;
 
 fs::path write_scene(const std::string& name, const std::string& text) {
   const fs::path p = fs::temp_directory_path() / name;
@@ -42,25 +30,25 @@ const std::string kScene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/two_f
 }  // namespace
 
 TEST(Cli, HelpAndVersion) {
-  Result r = polyfloe("--help");
+  Result r = run_polyfloe("--help");
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.output.find("polyfloe run SCENE"), std::string::npos);
-  r = polyfloe("--version");
+  r = run_polyfloe("--version");
   EXPECT_EQ(r.code, 0);
   EXPECT_EQ(r.output.rfind("polyfloe ", 0), 0u);
 }
 
 TEST(Cli, UsageErrorsExitTwo) {
-  EXPECT_EQ(polyfloe("").code, 2);
-  EXPECT_EQ(polyfloe("fly " + kScene).code, 2);
-  EXPECT_EQ(polyfloe("run").code, 2);
-  EXPECT_EQ(polyfloe("run " + kScene + " --threads 0").code, 2);
-  EXPECT_EQ(polyfloe("run " + kScene + " --set novalue").code, 2);
-  EXPECT_EQ(polyfloe("run " + kScene + " --bogus").code, 2);
+  EXPECT_EQ(run_polyfloe("").code, 2);
+  EXPECT_EQ(run_polyfloe("fly " + kScene).code, 2);
+  EXPECT_EQ(run_polyfloe("run").code, 2);
+  EXPECT_EQ(run_polyfloe("run " + kScene + " --threads 0").code, 2);
+  EXPECT_EQ(run_polyfloe("run " + kScene + " --set novalue").code, 2);
+  EXPECT_EQ(run_polyfloe("run " + kScene + " --bogus").code, 2);
 }
 
 TEST(Cli, CheckPrintsTheTimeStep) {
-  const Result r = polyfloe("check " + kScene);
+  const Result r = run_polyfloe("check " + kScene);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("time step:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("bodies: 2"), std::string::npos) << r.output;
@@ -72,18 +60,18 @@ TEST(Cli, BadSceneNamesLineAndKeyAndWritesNothing) {
                                      "  - regular: {sides: 6, radius: 5}\n");
   const fs::path out = fs::temp_directory_path() / "polyfloe_bad_scene_out";
   fs::remove_all(out);
-  const Result r = polyfloe("run " + scene.string() + " -o " + out.string());
+  const Result r = run_polyfloe("run " + scene.string() + " -o " + out.string());
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("polyfloe_bad_scene.yaml:4:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("contact.restitution"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
   // A misspelt key from the command line.
-  const Result s = polyfloe("run " + kScene + " -o " + out.string() + " --set contact.restitutio=0.5");
+  const Result s = run_polyfloe("run " + kScene + " -o " + out.string() + " --set contact.restitutio=0.5");
   EXPECT_EQ(s.code, 2);
   EXPECT_NE(s.output.find("--set contact.restitutio"), std::string::npos) << s.output;
   EXPECT_FALSE(fs::exists(out));
   // A missing file.
-  const Result m = polyfloe("run /nonexistent/scene.yaml -o " + out.string());
+  const Result m = run_polyfloe("run /nonexistent/scene.yaml -o " + out.string());
   EXPECT_EQ(m.code, 2);
   EXPECT_NE(m.output.find("/nonexistent/scene.yaml"), std::string::npos) << m.output;
   EXPECT_FALSE(fs::exists(out));
@@ -92,7 +80,7 @@ TEST(Cli, BadSceneNamesLineAndKeyAndWritesNothing) {
 TEST(Cli, RunWritesOutputs) {
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_run";
   fs::remove_all(out);
-  const Result r = polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=1.5");
+  const Result r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=1.5");
   EXPECT_EQ(r.code, 0) << r.output;
   for (const char* f : {"floes.pvd", "contacts.pvd", "results.h5", "scene.resolved.yaml"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
@@ -105,7 +93,7 @@ TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_cube_plate";
   fs::remove_all(out);
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/cube_plate.yaml";
-  const Result r = polyfloe("run " + scene + " -o " + out.string());
+  const Result r = run_polyfloe("run " + scene + " -o " + out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* f : {"bodies.pvd", "contacts.pvd", "results.h5", "scene.resolved.yaml"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
@@ -126,7 +114,7 @@ TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
 TEST(Cli, SpatialUnresolvedContactStopsWithExitThree) {
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_cube_plate_unstable";
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/cube_plate.yaml";
-  const Result r = polyfloe("run " + scene + " -o " + out.string() + " --set run.dt=0.005");
+  const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set run.dt=0.005");
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("bodies 0 and 1"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("lower run.dt"), std::string::npos) << r.output;
@@ -137,7 +125,7 @@ TEST(Cli, UnresolvedContactStopsWithExitThree) {
   // A 0.05 s step cannot resolve a ~0.03 s Hertz impact: the guard must stop the run, name the bodies and say
   // what to change, instead of letting the floes fly apart at ten times their impact speed.
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_unstable";
-  const Result r = polyfloe("run " + kScene + " -o " + out.string() + " --set run.dt=0.05");
+  const Result r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.dt=0.05");
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("bodies 0 and 1"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("run.dt"), std::string::npos) << r.output;
@@ -156,7 +144,7 @@ TEST(Cli, KinematicBodiesDoNotTripTheSpeedGuard) {
                                      "    motion: kinematic\n"
                                      "    angular_velocity: 0.6\n");
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_kinematic";
-  const Result r = polyfloe("run " + scene.string() + " -o " + out.string());
+  const Result r = run_polyfloe("run " + scene.string() + " -o " + out.string());
   EXPECT_EQ(r.code, 0) << r.output;
   fs::remove_all(out);
 }
@@ -165,7 +153,7 @@ TEST(Cli, OverflowingDragStopsWithExitThree) {
   // dt = 100 s makes the explicit quadratic drag overshoot and grow without bound within a few steps (the default
   // semi-implicit treatment is stable there: tests/validation/test_drift.cpp).
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_overflow";
-  const Result r = polyfloe("run " + kScene + " -o " + out.string() +
+  const Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
                             " --set run.dt=100 --set run.duration=3000 --set forcing.ocean.skin_drag.enabled=true"
                             " --set forcing.treatment=explicit"
                             " --set floes.0.velocity=[10,0] --set floes.0.position=[-1000,0]");
@@ -175,7 +163,7 @@ TEST(Cli, OverflowingDragStopsWithExitThree) {
 
 TEST(Cli, TinyOutputIntervalFinishes) {
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_tiny_interval";
-  const Result r = polyfloe("run " + kScene + " -o " + out.string() +
+  const Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
                             " --set output.interval=1e-300 --set run.duration=0.01");
   EXPECT_EQ(r.code, 0) << r.output;
   fs::remove_all(out);
@@ -187,7 +175,7 @@ TEST(Cli, RunKeepsUnrelatedFilesInTheOutputFolder) {
   fs::create_directories(out / "floes");
   std::ofstream(out / "floes" / "notes.txt") << "mine";
   std::ofstream(out / "floes" / "floes_000099.vtp") << "stale frame of an earlier run";
-  const Result r = polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2");
+  const Result r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "floes" / "notes.txt"));
   EXPECT_FALSE(fs::exists(out / "floes" / "floes_000099.vtp"));
@@ -198,7 +186,7 @@ TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
   // Two days of tidal drift with wind and Coriolis at 30 s steps (semi-implicit drag and Coriolis).
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/drift_tidal.yaml";
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_tidal";
-  Result r = polyfloe("run " + scene + " -o " + out.string());
+  Result r = run_polyfloe("run " + scene + " -o " + out.string());
   EXPECT_EQ(r.code, 0) << r.output;
   std::ifstream resolved(out / "scene.resolved.yaml");
   const std::string text((std::istreambuf_iterator<char>(resolved)), std::istreambuf_iterator<char>());
@@ -207,7 +195,7 @@ TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
   EXPECT_NE(text.find("coriolis: {enabled: true, latitude: 75"), std::string::npos) << text;
   // Steered into each other, two floes meet within a few steps: the contact cannot be resolved at 30 s steps, and
   // the run stops (exit 3) saying which bodies and what step would do.
-  r = polyfloe("run " + scene + " -o " + out.string() + " --set floes.1.position=[200,0] --set floes.1.velocity=[-1,0]");
+  r = run_polyfloe("run " + scene + " -o " + out.string() + " --set floes.1.position=[200,0] --set floes.1.velocity=[-1,0]");
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("the contact between bodies 0 and 1"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("or run.dt to"), std::string::npos) << r.output;
@@ -217,7 +205,7 @@ TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
 TEST(Cli, VortexSceneRuns) {
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/drift_vortex.yaml";
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_vortex";
-  const Result r = polyfloe("run " + scene + " -o " + out.string() + " --set run.duration=0.5 --set output.interval=0.25");
+  const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set run.duration=0.5 --set output.interval=0.25");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "floes.pvd"));
   fs::remove_all(out);
@@ -257,13 +245,13 @@ TEST(Cli, VelocityGridTooLargeIsRefusedBeforeAnyOutput) {
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/channel.yaml";
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_grid";
   fs::remove_all(out);
-  const Result r = polyfloe("run " + scene + " -o " + out.string() + " --set output.velocity_grid.cell=0.5");
+  const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set output.velocity_grid.cell=0.5");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("output.velocity_grid: the bodies span"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("raise output.velocity_grid.cell"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
   // A grid that fits runs and lists its series.
-  const Result ok = polyfloe("run " + scene + " -o " + out.string() +
+  const Result ok = run_polyfloe("run " + scene + " -o " + out.string() +
                              " --set run.duration=0.01 --set output.interval=0.005 --set output.contacts=false");
   EXPECT_EQ(ok.code, 0) << ok.output;
   EXPECT_NE(ok.output.find("floes.pvd, velocity.pvd"), std::string::npos) << ok.output;
@@ -275,7 +263,7 @@ TEST(Cli, ChannelGeometryFigureFromARun) {
   const std::string src = POLYFLOE_SOURCE_DIR;
   const fs::path out = fs::temp_directory_path() / "polyfloe_cli_geometry";
   fs::remove_all(out);
-  const Result r = polyfloe("run " + src + "/dem/scenes/channel.yaml -o " + out.string() +
+  const Result r = run_polyfloe("run " + src + "/dem/scenes/channel.yaml -o " + out.string() +
                             " --set run.duration=0.001 --set output.vtk=false");
   ASSERT_EQ(r.code, 0) << r.output;
   const std::string plot = "/usr/bin/python3 " + src + "/postprocess/plot_channel_geometry.py " + out.string() +
@@ -283,7 +271,7 @@ TEST(Cli, ChannelGeometryFigureFromARun) {
   EXPECT_EQ(std::system(plot.c_str()), 0);
   EXPECT_GT(fs::file_size(out / "geometry.png"), 10000u);
   // A run without a channel has nothing to draw: a clear refusal.
-  const Result two = polyfloe("run " + kScene + " -o " + (out / "two").string() + " --set run.duration=0.01");
+  const Result two = run_polyfloe("run " + kScene + " -o " + (out / "two").string() + " --set run.duration=0.01");
   ASSERT_EQ(two.code, 0) << two.output;
   const std::string none = "/usr/bin/python3 " + src + "/postprocess/plot_channel_geometry.py " + (out / "two").string() +
                            " -o " + (out / "none.png").string() + " > /dev/null 2>&1";

@@ -3,33 +3,20 @@
 // describes a field file. (The import itself is tested end to end in tests/validation/test_strait_openfoam.cpp.)
 #include <gtest/gtest.h>
 #include <stdlib.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "cli_support.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string out;  // stdout and stderr
-};
-
-Result field(const std::string& args) {
-  const std::string cmd = std::string(POLYFLOE_BINARY) + " field " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  while (const std::size_t n = std::fread(buf, 1, sizeof buf, p)) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using Result = polyfloe::tsupport::CommandResult;
+Result field(const std::string& args) { return polyfloe::tsupport::run_polyfloe("field " + args); }
 
 class FieldCli : public ::testing::Test {
  protected:
@@ -42,8 +29,8 @@ class FieldCli : public ::testing::Test {
   // Exit code 2, the message, and nothing written into the scratch folder but what the test made.
   void expect_refused(const std::string& args, const std::string& message) {
     const Result r = field(args);
-    EXPECT_EQ(r.code, 2) << args << "\n" << r.out;
-    EXPECT_NE(r.out.find(message), std::string::npos) << args << "\n" << r.out;
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "out.h5")) << args;
     EXPECT_FALSE(fs::exists(dir_ / "out.pvd")) << args;
   }
@@ -84,16 +71,16 @@ TEST_F(FieldCli, RefusesFoldersThatAreNotReadyOpenFoamCases) {
 TEST_F(FieldCli, InfoDescribesAFieldFileAndRefusesOthers) {
   const fs::path two = fs::path(POLYFLOE_SOURCE_DIR) / "tests" / "bad_input" / "fields" / "two_snapshots.h5";
   const Result r = field("info " + two.string());
-  EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("  t: 2 from 0 to 600 s (0, 600)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("  x: 4 from -100 to 2000 m"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("water: 100 % of the nodes; speed up to 1 m/s"), std::string::npos) << r.out;
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("  t: 2 from 0 to 600 s (0, 600)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("  x: 4 from -100 to 2000 m"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("water: 100 % of the nodes; speed up to 1 m/s"), std::string::npos) << r.output;
   expect_refused("info " + (dir_ / "missing.h5").string(), (dir_ / "missing.h5").string() + ": no such file");
   const fs::path nan = fs::path(POLYFLOE_SOURCE_DIR) / "tests" / "bad_input" / "fields" / "nan.h5";
   expect_refused("info " + nan.string(), "v is not finite at node (t 1, z 0, y 1, x 2)");
   const Result help = field("--help");
   EXPECT_EQ(help.code, 0);
-  EXPECT_NE(help.out.find("polyfloe field import CASE -o FILE"), std::string::npos);
+  EXPECT_NE(help.output.find("polyfloe field import CASE -o FILE"), std::string::npos);
 }
 
 }  // namespace

@@ -15,12 +15,12 @@ inline const char* kOneFloe =
     "floes:\n"
     "  - regular: {sides: 6, radius: 5}\n";
 
-// The message of the SceneError that `f` throws ("" if none).
-template <class F>
+// The message of the exception of type E (a SceneError unless said) that `f` throws ("" if none).
+template <class E = SceneError, class F>
 std::string error_of(F&& f) {
   try {
     f();
-  } catch (const SceneError& e) {
+  } catch (const E& e) {
     return e.what();
   }
   return "";

@@ -12,6 +12,8 @@
 #include "io/hdf5_file.h"
 #include "scene/scene.h"
 #include "scene/scene_reader.h"
+#include "scene_compare.h"
+#include "scene_test_support.h"
 
 namespace polyfloe {
 namespace {
@@ -80,12 +82,7 @@ TEST_F(FieldFileTest, RoundTripsExactly) {
 }
 
 std::string error_of(const fs::path& p) {
-  try {
-    (void)io::read_field_file(p);
-  } catch (const io::FieldFileError& e) {
-    return e.what();
-  }
-  return "no error";
+  return scene::error_of<io::FieldFileError>([&] { (void)io::read_field_file(p); });
 }
 
 TEST_F(FieldFileTest, RefusesMissingForeignAndMalformedFiles) {
@@ -154,19 +151,15 @@ std::string scene_with_field(const std::string& field) {
 }
 
 std::string scene_error(const fs::path& file) {
-  try {
-    (void)scene::read_scene(file);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "no error";
+  return scene::error_of([&] { (void)scene::read_scene(file); });
 }
 
 TEST_F(FieldFileTest, ASceneReadsItsFieldFileRelativeToItsFolder) {
   fs::create_directories(dir_ / "fields");
   io::write_field_file(dir_ / "fields" / "f.h5", sample_file());
   const fs::path scene_file = dir_ / "s.yaml";
-  std::ofstream(scene_file) << scene_with_field("{type: file, path: fields/f.h5, outside: cyclic}");
+  std::ofstream(scene_file) << scene_with_field(
+      "{type: file, path: fields/f.h5, outside: cyclic, no_water: velocity, no_water_velocity: [0.5, -0.25]}");
   const scene::Scene s = scene::read_scene(scene_file);
   ASSERT_EQ(s.ocean_field.kind, forcing::FieldKind::file);
   EXPECT_EQ(s.ocean_field.path, (dir_ / "fields" / "f.h5").string());
@@ -178,12 +171,14 @@ TEST_F(FieldFileTest, ASceneReadsItsFieldFileRelativeToItsFolder) {
   EXPECT_NEAR(u.y(), 0.05 - 1, 1e-12);
   // The resolved scene names the file absolutely, so it reads from anywhere (the output folder).
   const std::string resolved = scene::resolved_yaml(s);
-  EXPECT_NE(resolved.find("path: \"" + (dir_ / "fields" / "f.h5").string() + "\", outside: cyclic, no_water: error"),
+  EXPECT_NE(resolved.find("path: \"" + (dir_ / "fields" / "f.h5").string() +
+                          "\", outside: cyclic, no_water: velocity, no_water_velocity: [0.5, -0.25]"),
             std::string::npos)
       << resolved;
   fs::create_directories(dir_ / "out");
   std::ofstream(dir_ / "out" / "scene.resolved.yaml") << resolved;
-  EXPECT_NO_THROW((void)scene::read_scene(dir_ / "out" / "scene.resolved.yaml"));
+  scene::expect_same_settings(s, scene::read_scene(dir_ / "out" / "scene.resolved.yaml"));
+  EXPECT_EQ(s.world.drift.ocean->at({1e6, 0, -1}, 0), forcing::Vec2(0.5, -0.25));  // off the grid
 }
 
 TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
@@ -212,7 +207,10 @@ TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
   std::ofstream(scene_file) << scene_with_field("{type: file, outside: clamp}");
   EXPECT_NE(scene_error(scene_file).find("missing required key 'path'"), std::string::npos) << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, velocity: [1, 0]}");
-  EXPECT_NE(scene_error(scene_file).find("velocity"), std::string::npos) << scene_error(scene_file);
+  EXPECT_NE(scene_error(scene_file).find("unknown key 'forcing.ocean.field.velocity'; allowed in "
+                                         "'forcing.ocean.field': type, path, outside, no_water, no_water_velocity"),
+            std::string::npos)
+      << scene_error(scene_file);
 }
 
 TEST_F(FieldFileTest, AFloeOutsideTheWaterIsRefusedAtTheStartAndStopsTheRunWhenItDriftsOut) {
