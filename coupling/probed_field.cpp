@@ -25,8 +25,9 @@ void ProbedField::sample(double t, std::span<const forcing::Vec3> points, std::s
   Eigen::Vector3d a, b;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const forcing::Vec3& p = points[k];
-    if (s[tb.i].sample(p, a)) {
-      if (tb.w > 0.0 && s[tb.i + 1].sample(p, b)) a += tb.w * (b - a);
+    // In water when both snapshots around t hold p (a moving mesh may hold it in one only).
+    if (s[tb.i].sample(p, a) && (tb.w == 0.0 || s[tb.i + 1].sample(p, b))) {
+      if (tb.w > 0.0) a += tb.w * (b - a);
       out[k] = a.head<2>();
       continue;
     }

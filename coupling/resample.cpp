@@ -88,20 +88,20 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
                g.wet[k] == g.wet[iz * nxy + k];
       }
   if (same) {
-    forcing::GridData one = g;
-    one.z = {g.z.back()};
-    one.u.clear();
-    one.v.clear();
-    std::vector<double> w;
-    for (std::size_t it = 0; it < g.t.size(); ++it) {
-      const std::size_t a = g.index(it, 0, 0, 0);
-      one.u.insert(one.u.end(), g.u.begin() + static_cast<std::ptrdiff_t>(a), g.u.begin() + static_cast<std::ptrdiff_t>(a + nxy));
-      one.v.insert(one.v.end(), g.v.begin() + static_cast<std::ptrdiff_t>(a), g.v.begin() + static_cast<std::ptrdiff_t>(a + nxy));
-      w.insert(w.end(), f.w.begin() + static_cast<std::ptrdiff_t>(a), f.w.begin() + static_cast<std::ptrdiff_t>(a + nxy));
-    }
-    one.wet.assign(g.wet.begin(), g.wet.begin() + static_cast<std::ptrdiff_t>(nxy));
-    f.grid = std::move(one);
-    f.w = std::move(w);
+    // Keep level 0's values (every level holds the same) under the top level's height: in place, snapshot it's
+    // level-0 block moves to block it of the one-level layout (it * nxy <= it * per_level: no overlap ahead).
+    const std::size_t per_level = g.nodes_per_snapshot();
+    const auto first_level_only = [&](std::vector<double>& a) {
+      for (std::size_t it = 0; it < g.t.size(); ++it)
+        std::copy_n(a.begin() + static_cast<std::ptrdiff_t>(it * per_level), nxy,
+                    a.begin() + static_cast<std::ptrdiff_t>(it * nxy));
+      a.resize(g.t.size() * nxy);
+    };
+    first_level_only(g.u);
+    first_level_only(g.v);
+    first_level_only(f.w);
+    g.wet.resize(nxy);
+    g.z = {g.z.back()};
   }
   f.info.source = source;
   return f;
