@@ -9,6 +9,14 @@ namespace polyfloe::contact {
 void GridBroadPhase::find_pairs(std::span<const geometry::Aabb> boxes, std::span<const std::uint8_t> is_dynamic,
                                 std::vector<CandidatePair>& pairs) {
   pairs.clear();
+  build(boxes, is_dynamic);
+  scan_tiles(0, tiles_, pairs);
+}
+
+void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<const std::uint8_t> is_dynamic) {
+  boxes_ = boxes;
+  dynamic_ = is_dynamic;
+  tiles_ = 0;
   const int n = static_cast<int>(boxes.size());
   if (n < 2) return;
 
@@ -17,7 +25,11 @@ void GridBroadPhase::find_pairs(std::span<const geometry::Aabb> boxes, std::span
   geometry::Vec2 hi = -lo;
   double extent_sum = 0.0;
   int dynamic_count = 0;
+  // A non-finite box (a body whose state blew up; the run guard reports it) enters no cell: it has no pairs, and
+  // the others keep theirs.
+  auto finite = [&](int i) { return boxes[i].lo.allFinite() && boxes[i].hi.allFinite(); };
   for (int i = 0; i < n; ++i) {
+    if (!finite(i)) continue;
     lo = lo.cwiseMin(boxes[i].lo);
     hi = hi.cwiseMax(boxes[i].hi);
     if (is_dynamic[i]) {
@@ -26,28 +38,48 @@ void GridBroadPhase::find_pairs(std::span<const geometry::Aabb> boxes, std::span
     }
   }
   if (dynamic_count == 0) return;
-  // A non-finite box (a body whose state blew up) makes no grid; the run guard reports the body.
-  if (!std::isfinite(lo.x()) || !std::isfinite(lo.y()) || !std::isfinite(hi.x()) || !std::isfinite(hi.y())) return;
   cell_ = requested_cell_ > 0.0 ? requested_cell_ : 2.0 * extent_sum / dynamic_count;
   const geometry::Vec2 span = hi - lo;
   // Keep the grid no larger than ~4 cells per body (bodies spread far apart, or a tiny requested cell).
   const double max_cells = 4.0 * n + 1024.0;
-  auto cells_for = [&](double c) { return (std::floor(span.x() / c) + 1.0) * (std::floor(span.y() / c) + 1.0); };
+  // Cells are numbered tile by tile (kTile x kTile cells per tile, row-major inside a tile and between tiles), and
+  // the pairs are found in that order: the bodies a tile's pairs read stay in cache while it is scanned, however
+  // wide the field (a row-major scan of a 10 km field walks a whole row of cells before coming back). A grid
+  // narrower than a tile has tiles as wide as the grid (no padding along it); the cap counts the padding.
+  auto padded = [](double cells) {
+    const double t = std::min(static_cast<double>(kTile), cells);
+    return std::ceil(cells / t) * t;
+  };
+  auto cells_for = [&](double c) {
+    return padded(std::floor(span.x() / c) + 1.0) * padded(std::floor(span.y() / c) + 1.0);
+  };
   while (cells_for(cell_) > max_cells) cell_ *= 1.5;
   const int nx = static_cast<int>(std::floor(span.x() / cell_)) + 1;
   const int ny = static_cast<int>(std::floor(span.y() / cell_)) + 1;
+  const int tw = std::min(kTile, nx), th = std::min(kTile, ny);
+  const int ntx = (nx + tw - 1) / tw;
+  const std::size_t tile_cells = static_cast<std::size_t>(tw) * th;
+  const std::size_t padded_cells = static_cast<std::size_t>(ntx) * ((ny + th - 1) / th) * tile_cells;
+  auto cell_id = [&](int x, int y) {
+    return (static_cast<std::size_t>(y / th) * ntx + x / tw) * tile_cells + static_cast<std::size_t>(y % th) * tw + x % tw;
+  };
   const double inv = 1.0 / cell_;
   auto cx = [&](double x) { return std::clamp(static_cast<int>((x - lo.x()) * inv), 0, nx - 1); };
   auto cy = [&](double y) { return std::clamp(static_cast<int>((y - lo.y()) * inv), 0, ny - 1); };
 
   // Counting sort of (body, cell) entries.
   ranges_.resize(4 * static_cast<std::size_t>(n));
-  cell_start_.assign(static_cast<std::size_t>(nx) * ny + 1, 0);
+  cell_start_.assign(padded_cells + 1, 0);
   for (int i = 0; i < n; ++i) {
+    if (!finite(i)) {  // an empty range: no cell
+      ranges_[4 * i] = ranges_[4 * i + 1] = 1;
+      ranges_[4 * i + 2] = ranges_[4 * i + 3] = 0;
+      continue;
+    }
     const int x0 = cx(boxes[i].lo.x()), y0 = cy(boxes[i].lo.y()), x1 = cx(boxes[i].hi.x()), y1 = cy(boxes[i].hi.y());
     ranges_[4 * i] = x0; ranges_[4 * i + 1] = y0; ranges_[4 * i + 2] = x1; ranges_[4 * i + 3] = y1;
     for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) ++cell_start_[static_cast<std::size_t>(y) * nx + x + 1];
+      for (int x = x0; x <= x1; ++x) ++cell_start_[cell_id(x, y) + 1];
   }
   for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
   entries_.resize(static_cast<std::size_t>(cell_start_.back()));
@@ -55,26 +87,35 @@ void GridBroadPhase::find_pairs(std::span<const geometry::Aabb> boxes, std::span
   for (int i = 0; i < n; ++i) {
     for (int y = ranges_[4 * i + 1]; y <= ranges_[4 * i + 3]; ++y)
       for (int x = ranges_[4 * i]; x <= ranges_[4 * i + 2]; ++x)
-        entries_[static_cast<std::size_t>(cursor_[static_cast<std::size_t>(y) * nx + x]++)] = i;
+        entries_[static_cast<std::size_t>(cursor_[cell_id(x, y)]++)] = i;
   }
 
-  // Pairs within each cell; reported only by the cell holding the lower corner of the boxes' intersection.
-  for (int y = 0; y < ny; ++y) {
-    for (int x = 0; x < nx; ++x) {
-      const std::size_t c = static_cast<std::size_t>(y) * nx + x;
-      const int begin = cell_start_[c], end = cell_start_[c + 1];
-      for (int p = begin; p < end; ++p) {
-        const int i = entries_[p];
-        const geometry::Aabb& bi = boxes[i];
-        for (int q = p + 1; q < end; ++q) {
-          const int j = entries_[q];
-          if (!is_dynamic[i] && !is_dynamic[j]) continue;
-          const geometry::Aabb& bj = boxes[j];
-          if (!bi.overlaps(bj)) continue;
-          if (std::max(ranges_[4 * i], ranges_[4 * j]) != x || std::max(ranges_[4 * i + 1], ranges_[4 * j + 1]) != y)
-            continue;
-          pairs.push_back(i < j ? CandidatePair{i, j} : CandidatePair{j, i});
-        }
+  tw_ = tw;
+  th_ = th;
+  ntx_ = ntx;
+  tiles_ = padded_cells / tile_cells;
+}
+
+void GridBroadPhase::scan_tiles(std::size_t t0, std::size_t t1, std::vector<CandidatePair>& pairs) const {
+  // Pairs within each cell, tile by tile; reported only by the cell holding the lower corner of the boxes'
+  // intersection.
+  const std::size_t tile_cells = static_cast<std::size_t>(tw_) * th_;
+  for (std::size_t c = t0 * tile_cells; c < std::min(t1, tiles_) * tile_cells; ++c) {
+    const int begin = cell_start_[c], end = cell_start_[c + 1];
+    if (end - begin < 2) continue;
+    const int in_tile = static_cast<int>(c % tile_cells), tile = static_cast<int>(c / tile_cells);
+    const int x = (tile % ntx_) * tw_ + in_tile % tw_, y = (tile / ntx_) * th_ + in_tile / tw_;
+    for (int p = begin; p < end; ++p) {
+      const int i = entries_[p];
+      const geometry::Aabb& bi = boxes_[i];
+      for (int q = p + 1; q < end; ++q) {
+        const int j = entries_[q];
+        if (!dynamic_[i] && !dynamic_[j]) continue;
+        const geometry::Aabb& bj = boxes_[j];
+        if (!bi.overlaps(bj)) continue;
+        if (std::max(ranges_[4 * i], ranges_[4 * j]) != x || std::max(ranges_[4 * i + 1], ranges_[4 * j + 1]) != y)
+          continue;
+        pairs.push_back(i < j ? CandidatePair{i, j} : CandidatePair{j, i});
       }
     }
   }

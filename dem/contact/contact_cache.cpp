@@ -7,12 +7,21 @@ namespace polyfloe::contact {
 PairKey make_key(std::uint64_t a, std::uint64_t b) { return a < b ? PairKey{a, b} : PairKey{b, a}; }
 
 double ContactCache::previous(const PairKey& k) const {
+  std::size_t hint = prev_.size();
+  return previous(k, hint);
+}
+
+double ContactCache::previous(const PairKey& k, std::size_t& hint) const {
+  if (hint < prev_.size() && prev_[hint].first == k) return prev_[hint++].second;
   if (index_.empty()) return 0.0;
   const std::size_t mask = index_.size() - 1;
   for (std::size_t h = PairKeyHash{}(k) & mask;; h = (h + 1) & mask) {
     const std::int32_t i = index_[h];
     if (i < 0) return 0.0;
-    if (prev_[static_cast<std::size_t>(i)].first == k) return prev_[static_cast<std::size_t>(i)].second;
+    if (prev_[static_cast<std::size_t>(i)].first == k) {
+      hint = static_cast<std::size_t>(i) + 1;
+      return prev_[static_cast<std::size_t>(i)].second;
+    }
   }
 }
 

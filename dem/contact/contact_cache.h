@@ -26,6 +26,9 @@ class ContactCache {
  public:
   // Spring value stored for this pair by the previous step, or 0 for a new contact.
   double previous(const PairKey& k) const;
+  // The same, first trying the entry at `hint` and leaving `hint` just past the entry found: pairs come in nearly
+  // the same order every step, so a loop that passes one hint along reads the store in order, without hashing.
+  double previous(const PairKey& k, std::size_t& hint) const;
   // Record this step's value; the pair survives into the next step. Each pair is stored at most once a step.
   void store(const PairKey& k, double spring) { cur_.emplace_back(k, spring); }
   // Called once per step after all stores: this step's entries become the previous ones.

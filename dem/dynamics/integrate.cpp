@@ -1,5 +1,7 @@
 // Stage: velocity-Verlet kicks and drift, and the world-frame shapes that follow the bodies.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "dynamics/parallel.h"
 #include "dynamics/world.h"
@@ -101,21 +103,76 @@ void World::update_shape(int i) {
   const double c = std::cos(yaw_[i]), s = std::sin(yaw_[i]);
   rotation_[i] = {c, s};
   const auto& local = shape_[i]->vertices();
-  Vec2* out = world_xy_.data() + vert_off_[i];
+  Vec2* out = world_xy_.data() + vert_begin_[i];
   geometry::Aabb box{pos_[i], pos_[i]};
   for (std::size_t k = 0; k < local.size(); ++k) {
     out[k] = pos_[i] + geometry::rotate(local[k], c, s);
     box.lo = box.lo.cwiseMin(out[k]);
     box.hi = box.hi.cwiseMax(out[k]);
   }
-  boxes_[i] = box;
+  boxes_[static_cast<std::size_t>(body_slot_[i])] = box;
+}
+
+namespace {
+
+// The cell of a position on a grid of `cell` [m] anchored at the origin, numbered tile by tile as the broad phase
+// numbers its cells (16 x 16 cells per tile; row-major inside a tile and between tiles). A non-finite position (a
+// body that blew up; the run guard reports it) sorts last.
+std::uint64_t slot_key(const Vec2& p, double cell) {
+  const double inv = 1.0 / cell;
+  const double x = std::floor(p.x() * inv), y = std::floor(p.y() * inv);
+  constexpr double lim = 2147483647.0;
+  if (!(std::abs(x) < lim) || !(std::abs(y) < lim)) return ~std::uint64_t{0};
+  const auto ux = static_cast<std::uint64_t>(static_cast<std::int64_t>(x) + 2147483648LL);  // < 2^32
+  const auto uy = static_cast<std::uint64_t>(static_cast<std::int64_t>(y) + 2147483648LL);
+  return ((uy >> 4) << 36) | ((ux >> 4) << 8) | ((uy & 15u) << 4) | (ux & 15u);
+}
+
+bool slot_less(const auto& a, const auto& b) { return a.key != b.key ? a.key < b.key : a.body < b.body; }
+
+}  // namespace
+
+bool World::sort_slots() {
+  const int n = static_cast<int>(slots_.size());
+  POLYFLOE_OMP_FOR(threads_)
+  for (int k = 0; k < n; ++k) slots_[k].key = slot_key(pos_[slots_[k].body], order_cell_);
+  // Insertion sort from the last order: floes that keep their neighbours make it O(N). Past a budget of moves
+  // (bodies crossing many others, or the first sort) a full sort; both give the one order sorted by (key, body).
+  bool changed = false;
+  std::size_t moves = 0;
+  const std::size_t budget = 8 * static_cast<std::size_t>(n) + 64;
+  for (int k = 1; k < n && moves <= budget; ++k) {
+    if (!slot_less(slots_[k], slots_[k - 1])) continue;
+    changed = true;
+    const SlotKey x = slots_[k];
+    int j = k;
+    for (; j > 0 && slot_less(x, slots_[j - 1]); --j) slots_[j] = slots_[j - 1];
+    slots_[j] = x;
+    moves += static_cast<std::size_t>(k - j);
+  }
+  if (moves > budget) std::sort(slots_.begin(), slots_.end(), [](const SlotKey& a, const SlotKey& b) { return slot_less(a, b); });
+  if (!changed) return false;
+  // New layout: slot data and each body's place in world_xy_ follow the slot order.
+  int off = 0;
+  for (int k = 0; k < n; ++k) {
+    const int i = slots_[k].body;
+    body_slot_[i] = k;
+    vert_begin_[i] = off;
+    const int nv = vert_off_[i + 1] - vert_off_[i];
+    slot_static_[k] = {is_dynamic_[i] ? mass_[i] : contact::kInfinite, radius_[i], id_[i], i, off, nv};
+    slot_dynamic_[k] = is_dynamic_[i];
+    off += nv;
+  }
+  return true;
 }
 
 void World::update_shapes() {
+  // Every shape is rewritten where the slot order moved it; otherwise fixed bodies keep theirs.
+  const bool all = sort_slots();
   const int n = static_cast<int>(size());
   POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i)
-    if (motion_[i] != Motion::fixed) update_shape(i);
+    if (all || motion_[i] != Motion::fixed) update_shape(i);
 }
 
 }  // namespace polyfloe::dynamics

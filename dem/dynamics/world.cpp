@@ -64,9 +64,21 @@ int World::add_body(const BodyDesc& d) {
   inv_mass_.push_back(dyn ? 1.0 / pm.mass : 0.0);
   inv_inertia_.push_back(dyn ? 1.0 / pm.inertia_z : 0.0);
   vert_off_.push_back(vert_off_.back() + d.shape->size());
+  vert_begin_.push_back(vert_off_[i]);
   world_xy_.resize(static_cast<std::size_t>(vert_off_.back()));
-  boxes_.emplace_back();
   rotation_.emplace_back(1.0, 0.0);
+  // A new body takes the last slot (its vertices go at the end of world_xy_); the next step sorts the slots.
+  if (dyn) {
+    radius_sum_ += d.shape->equivalent_radius();
+    ++dynamic_count_;
+    order_cell_ = 4.0 * radius_sum_ / dynamic_count_;
+  }
+  slots_.push_back({~std::uint64_t{0}, i});
+  body_slot_.push_back(i);
+  slot_static_.push_back({dyn ? pm.mass : contact::kInfinite, radius_.back(), d.id, i, vert_begin_[i],
+                          static_cast<int>(d.shape->size())});
+  slot_dynamic_.push_back(dyn ? 1 : 0);
+  boxes_.emplace_back();
   update_shape(i);
   forces_ready_ = false;
   return i;

@@ -44,10 +44,19 @@ struct WorldSettings {
   double broad_phase_cell = 0.0;  // grid cell size [m]; 0 = automatic
 };
 
+// What a contact record keeps of the narrow phase's measurement (contact::PlanarContact less the terms only the
+// force evaluation reads).
+struct ContactGeometry {
+  Vec2 normal{1.0, 0.0};  // unit normal from a to b
+  Vec2 point{0.0, 0.0};   // contact point: the overlap's centroid (exact) or the witness midpoint (gjk_epa) [m]
+  double depth = 0.0;     // [m]
+  double area = 0.0;      // overlap area [m^2] (0 from gjk_epa)
+};
+
 // One active contact of the last step (for output and diagnostics).
 struct ContactRecord {
   int a = 0, b = 0;            // body indices, ordered so that id(a) < id(b); the normal points from a to b
-  contact::PlanarContact geometry;
+  ContactGeometry geometry;
   double normal_force = 0.0;   // [N], on b along +normal
   double tangential_force = 0.0;  // [N], on b along k x normal
   bool sliding = false;
@@ -125,7 +134,7 @@ class World {
   Motion motion(int i) const { return motion_[i]; }
   // World-frame vertices of body i as of the last step (counter-clockwise).
   std::span<const Vec2> world_vertices(int i) const {
-    return {world_xy_.data() + vert_off_[i], static_cast<std::size_t>(vert_off_[i + 1] - vert_off_[i])};
+    return {world_xy_.data() + vert_begin_[i], static_cast<std::size_t>(vert_off_[i + 1] - vert_off_[i])};
   }
 
   // --- bonds between elements (frozen ice): none until set ---
@@ -193,6 +202,8 @@ class World {
   void drift(double dt);
   void update_shapes();
   void update_shape(int i);
+  // Re-sorts the contact stage's slots (below) by the bodies' current positions; true if the order changed.
+  bool sort_slots();
   void contact_forces(double dt);
   void drift_forces(double t);
   void bond_forces(double t);
@@ -231,26 +242,65 @@ class World {
   std::vector<Motion> motion_;
   std::vector<std::uint8_t> is_dynamic_;
   // world-frame shapes, refreshed after each drift
-  std::vector<int> vert_off_{0};
+  std::vector<int> vert_off_{0};  // prefix sums of the vertex counts, in body order (vertex count = difference)
+  std::vector<int> vert_begin_;   // where body i's world-frame vertices start in world_xy_ (slot order, below)
   std::vector<Vec2> world_xy_;
-  std::vector<geometry::Aabb> boxes_;
   std::vector<Vec2> rotation_;  // (cos yaw, sin yaw) of the world-frame shape
+
+  // The contact stage works on "slots": the bodies sorted by position (rows of order_cell_ along y, then x; ties
+  // by index), so that bodies close in space are close in memory whatever order they were added in. The order is
+  // a function of the current positions alone (restarts reproduce it) and is re-sorted every step (insertion sort
+  // from the last order: O(N) while floes keep their neighbours). Indices stay the public handle; slots are
+  // private to the step. World-frame vertices and boxes are stored in slot order.
+  struct SlotKey {
+    std::uint64_t key = 0;
+    int body = 0;
+  };
+  struct SlotStatic {  // rewritten when the order changes
+    double mass = 0.0;    // [kg], +inf unless dynamic
+    double radius = 0.0;  // [m], +inf unless dynamic
+    BodyId id = 0;
+    int body = 0;         // body index
+    int vert_begin = 0;   // into world_xy_
+    int vert_count = 0;
+  };
+  struct SlotState {  // gathered every force evaluation
+    Vec2 pos{0.0, 0.0}, vel{0.0, 0.0};  // [m], [m/s] (velocity as evaluated)
+    double omega = 0.0;                 // [rad/s]
+  };
+  double order_cell_ = 1.0;         // [m], 4 x the mean equivalent radius of the dynamic bodies
+  double radius_sum_ = 0.0;         // of the dynamic bodies [m]
+  int dynamic_count_ = 0;
+  std::vector<SlotKey> slots_;      // slot -> body, sorted by (key, body)
+  std::vector<int> body_slot_;      // body -> slot
+  std::vector<SlotStatic> slot_static_;
+  std::vector<SlotState> slot_state_;
+  std::vector<std::uint8_t> slot_dynamic_;
+  std::vector<geometry::Aabb> boxes_;  // world-frame bounding boxes, by slot
+  std::vector<Vec2> slot_force_;       // contact force and torque of the current evaluation, by slot
+  std::vector<double> slot_torque_;
   // scratch
   int threads_ = 1;
   std::vector<contact::CandidatePair> pairs_;
+  std::vector<std::vector<contact::CandidatePair>> pair_chunks_;  // the broad phase's scan, split between threads
   std::vector<ContactRecord> contacts_;
   // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
   struct PairResult {
     bool hit = false;
     bool fallback = false;  // the 2-D GJK-EPA failed on it: measured exactly (beside `hit`: no growth in size)
-    int a = 0, b = 0;  // ordered by id
-    contact::PlanarContact g;
+    int a = 0, b = 0;  // slots, ordered by id
+    ContactGeometry g;
     contact::ContactForce cf;
     Vec2 f{0.0, 0.0};  // on b
     double tau_b = 0.0, tau_a = 0.0;
     double v2 = 0.0, q2 = 0.0;
   };
   std::vector<PairResult> pair_results_;
+  // Each thread's place in the contact history (ContactCache::previous with a hint), a cache line apart.
+  struct alignas(64) CacheHint {
+    std::size_t at = 0;
+  };
+  std::vector<CacheHint> cache_hint_;
   // Per-thread scratch of the drift stage: sample points and sampled fluid velocities of one body.
   struct DriftScratch {
     std::vector<forcing::Vec3> side_points, quad_points;

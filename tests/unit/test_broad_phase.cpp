@@ -1,12 +1,14 @@
 // GridBroadPhase against brute force: for every set of boxes, the candidate pairs must be exactly the pairs (i < j)
 // whose boxes overlap (closed intervals, touching counts) and of which at least one body is dynamic, each once.
 // Sets: power-law sizes 5-100 m, some non-dynamic boxes, automatic and fixed cell sizes (tiny, typical, huge), boxes
-// spread over a huge area (the cell-count cap), identical boxes, zero-size boxes, boxes on cell boundaries.
+// spread over a huge area (the cell-count cap), identical boxes, zero-size boxes, boxes on cell boundaries; non-finite
+// boxes (a body that blew up) enter no cell.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
@@ -194,4 +196,27 @@ TEST(BroadPhase, NonDynamicPairsExcludedAndEdgeCases) {
     contact::GridBroadPhase g2(cell);
     expect_same_pairs(g2, far, fdyn, "far from origin");
   }
+}
+
+TEST(BroadPhase, NonFiniteBoxesEnterNoCellAndTheOthersKeepTheirPairs) {
+  std::mt19937_64 rng(9);
+  const int n = 400;
+  auto boxes = power_law_boxes(rng, n, 600.0);
+  const auto dyn = mostly_dynamic(rng, n, 0.1);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  boxes[3] = {Vec2{nan, 0.0}, Vec2{nan, 1.0}};   // a body whose state became NaN
+  boxes[50] = {Vec2{-inf, -inf}, Vec2{inf, inf}};  // or infinite
+  boxes[51].hi.y() = nan;
+  std::vector<contact::CandidatePair> got;
+  contact::GridBroadPhase grid;
+  grid.find_pairs(boxes, dyn, got);  // used to loop for ever on a NaN box
+  PairList g;
+  for (const auto& p : got) g.emplace_back(p.a, p.b);
+  std::sort(g.begin(), g.end());
+  PairList want;
+  for (const auto& p : brute_pairs(boxes, dyn))
+    if (p.first != 3 && p.first != 50 && p.first != 51 && p.second != 3 && p.second != 50 && p.second != 51)
+      want.push_back(p);
+  EXPECT_FALSE(want.empty());
+  EXPECT_EQ(g, want);
 }

@@ -1,7 +1,9 @@
 // The contact history cache: values survive exactly one step unless refreshed, keys are unordered id pairs,
-// lookups stay correct under heavy probing, and entries()/restore() round-trip in a deterministic order.
+// lookups stay correct under heavy probing, the hinted lookup agrees with the hashed one, and entries()/restore()
+// round-trip in a deterministic order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "contact/contact_cache.h"
@@ -44,4 +46,32 @@ TEST(ContactCache, ManyEntriesAndRoundTrip) {
   d.restore(e);
   for (std::size_t i = 0; i < keys.size(); i += 97) EXPECT_EQ(d.previous(make_key(keys[i].first, keys[i].second)), 1.0 + i);
   EXPECT_EQ(d.entries(), e);
+}
+
+// The hinted lookup gives what the hashed one gives, whatever the hint: pairs in last step's order (the hint
+// follows), shuffled, dropped and new pairs, and hints past the end.
+TEST(ContactCache, HintedLookupAgreesWithTheHashedOne) {
+  std::mt19937_64 rng(11);
+  ContactCache c;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> keys;
+  for (int i = 0; i < 3000; ++i) keys.emplace_back(i, 5000 + rng() % 5000);
+  for (std::size_t i = 0; i < keys.size(); ++i) c.store(make_key(keys[i].first, keys[i].second), 0.25 * i);
+  c.end_step();
+  std::size_t hint = 0;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    ASSERT_EQ(c.previous(make_key(keys[i].first, keys[i].second), hint), 0.25 * i);
+    ASSERT_EQ(hint, i + 1);  // in order: every lookup is the hinted entry
+  }
+  std::vector<std::size_t> order(keys.size() + 500);
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;  // i >= keys.size(): pairs never stored
+  std::shuffle(order.begin(), order.end(), rng);
+  for (std::size_t h0 : {std::size_t{0}, std::size_t{1234}, keys.size(), keys.size() + 77}) {
+    hint = h0;
+    for (std::size_t i : order) {
+      const auto k = i < keys.size() ? make_key(keys[i].first, keys[i].second) : make_key(20000 + i, 30000 + i);
+      const double want = i < keys.size() ? 0.25 * i : 0.0;
+      ASSERT_EQ(c.previous(k, hint), want);
+      ASSERT_EQ(c.previous(k), want);
+    }
+  }
 }
