@@ -87,6 +87,19 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   auto b_normal = [&](int j) { return perp_right(b[j] - b[(j == 0) ? nb - 1 : j - 1]); };
 
   double s[kMaxClipped];
+  // The bounding box of the current polygon (centre, half extents): an edge of B whose half-plane holds the whole
+  // box cannot cut the polygon, which one test shows (after the first cuts the polygon is the overlap sliver and
+  // most of B's edges lie far from it).
+  Vec2 box_c{0.0, 0.0}, box_h{-1.0, -1.0};  // h < 0: not computed yet
+  auto bound = [&]() {
+    Vec2 lo = cur->p[0], hi = cur->p[0];
+    for (int k = 1; k < cur->n; ++k) {
+      lo = lo.cwiseMin(cur->p[k]);
+      hi = hi.cwiseMax(cur->p[k]);
+    }
+    box_c = 0.5 * (lo + hi);
+    box_h = 0.5 * (hi - lo);
+  };
   // Clip by B's edges starting with the one that ends at j_near (they face A): the first cuts shrink the polygon
   // to the overlap sliver, and a separated pair is usually rejected by the first edge.
   Vec2 b0 = b[(j_near == 0) ? nb - 1 : j_near - 1] - origin;
@@ -95,6 +108,8 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     const Vec2 nrm = perp_right(b1 - b0);  // outward normal of B's edge (b0 -> b1), unnormalised
     const double d = nrm.dot(b0);
     b0 = b1;
+    if (box_h.x() >= 0.0 && nrm.dot(box_c) - d + std::abs(nrm.x()) * box_h.x() + std::abs(nrm.y()) * box_h.y() < 0.0)
+      continue;  // the box, hence the polygon, lies strictly inside this edge's half-plane
     // Signed distances (scaled by |nrm|): <= 0 is inside B's half-plane.
     bool any_out = false, any_in = false;
     for (int k = 0; k < cur->n; ++k) {
@@ -122,6 +137,7 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     }
     nxt->n = m;
     std::swap(cur, nxt);
+    if (jj + 1 < nb) bound();
   }
 
   // Area, centroid and the chord vector of the overlap polygon.
