@@ -132,47 +132,60 @@ bool slot_less(const auto& a, const auto& b) { return a.key != b.key ? a.key < b
 
 }  // namespace
 
-bool World::sort_slots() {
+void World::sort_slots() {
   const int n = static_cast<int>(slots_.size());
   POLYFLOE_OMP_FOR(threads_)
   for (int k = 0; k < n; ++k) slots_[k].key = slot_key(pos_[slots_[k].body], order_cell_);
   // Insertion sort from the last order: floes that keep their neighbours make it O(N). Past a budget of moves
   // (bodies crossing many others, or the first sort) a full sort; both give the one order sorted by (key, body).
-  bool changed = false;
+  // Each move permutes the slots of an interval among themselves; overlapping intervals are merged, so that each
+  // recorded interval holds the same bodies as before, whose vertices filled one block of world_xy_.
+  moved_.clear();
   std::size_t moves = 0;
   const std::size_t budget = 8 * static_cast<std::size_t>(n) + 64;
   for (int k = 1; k < n && moves <= budget; ++k) {
     if (!slot_less(slots_[k], slots_[k - 1])) continue;
-    changed = true;
     const SlotKey x = slots_[k];
     int j = k;
     for (; j > 0 && slot_less(x, slots_[j - 1]); --j) slots_[j] = slots_[j - 1];
     slots_[j] = x;
     moves += static_cast<std::size_t>(k - j);
+    int first = j;
+    while (!moved_.empty() && moved_.back().second >= first) {
+      first = std::min(first, moved_.back().first);
+      moved_.pop_back();
+    }
+    moved_.emplace_back(first, k);
   }
-  if (moves > budget) std::sort(slots_.begin(), slots_.end(), [](const SlotKey& a, const SlotKey& b) { return slot_less(a, b); });
-  if (!changed) return false;
-  // New layout: slot data and each body's place in world_xy_ follow the slot order.
-  int off = 0;
-  for (int k = 0; k < n; ++k) {
-    const int i = slots_[k].body;
-    body_slot_[i] = k;
-    vert_begin_[i] = off;
-    const int nv = vert_off_[i + 1] - vert_off_[i];
-    slot_static_[k] = {is_dynamic_[i] ? mass_[i] : contact::kInfinite, radius_[i], id_[i], i, off, nv};
-    slot_dynamic_[k] = is_dynamic_[i];
-    off += nv;
+  if (moves > budget) {
+    std::sort(slots_.begin(), slots_.end(), [](const SlotKey& a, const SlotKey& b) { return slot_less(a, b); });
+    moved_.assign(1, {0, n - 1});
   }
-  return true;
+  // New layout of each moved interval: slot data and the bodies' places in their block of world_xy_ follow the
+  // slot order; the fixed bodies there are redrawn (the others are every step).
+  for (const auto& [first, last] : moved_) {
+    int off = vert_begin_[slots_[first].body];
+    for (int k = first + 1; k <= last; ++k) off = std::min(off, vert_begin_[slots_[k].body]);
+    for (int k = first; k <= last; ++k) {
+      const int i = slots_[k].body;
+      body_slot_[i] = k;
+      vert_begin_[i] = off;
+      const int nv = vert_off_[i + 1] - vert_off_[i];
+      slot_static_[k] = {is_dynamic_[i] ? mass_[i] : contact::kInfinite, radius_[i], id_[i], i, off, nv};
+      slot_dynamic_[k] = is_dynamic_[i];
+      off += nv;
+    }
+    for (int k = first; k <= last; ++k)
+      if (motion_[slots_[k].body] == Motion::fixed) update_shape(slots_[k].body);
+  }
 }
 
 void World::update_shapes() {
-  // Every shape is rewritten where the slot order moved it; otherwise fixed bodies keep theirs.
-  const bool all = sort_slots();
+  sort_slots();
   const int n = static_cast<int>(size());
   POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i)
-    if (all || motion_[i] != Motion::fixed) update_shape(i);
+    if (motion_[i] != Motion::fixed) update_shape(i);
 }
 
 }  // namespace polyfloe::dynamics

@@ -10,6 +10,7 @@
 #include <span>
 #include <unordered_map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bonds/bond_set.h"
@@ -202,8 +203,8 @@ class World {
   void drift(double dt);
   void update_shapes();
   void update_shape(int i);
-  // Re-sorts the contact stage's slots (below) by the bodies' current positions; true if the order changed.
-  bool sort_slots();
+  // Re-sorts the contact stage's slots (below) by the bodies' current positions and lays out the moved ones anew.
+  void sort_slots();
   void contact_forces(double dt);
   void drift_forces(double t);
   void bond_forces(double t);
@@ -273,6 +274,7 @@ class World {
   int dynamic_count_ = 0;
   std::vector<SlotKey> slots_;      // slot -> body, sorted by (key, body)
   std::vector<int> body_slot_;      // body -> slot
+  std::vector<std::pair<int, int>> moved_;  // slot intervals [first, last] the last sort permuted
   std::vector<SlotStatic> slot_static_;
   std::vector<SlotState> slot_state_;
   std::vector<std::uint8_t> slot_dynamic_;
