@@ -18,32 +18,17 @@
 #include "dynamics/world.h"
 #include "forcing/drift.h"
 #include "test_support.h"
+#include "world_checks.h"
 
 using namespace polyfloe;
 using geometry::Vec2;
+using tsupport::expect_vertices_follow_body;
+using tsupport::no_drift;
 
 namespace {
 
-dynamics::WorldSettings no_drift() {
-  dynamics::WorldSettings ws;
-  ws.drift = forcing::DriftSettings::none();
-  return ws;
-}
-
 std::shared_ptr<const geometry::ConvexPolygon> rect(double w, double h) {
   return std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(w, h));
-}
-
-void expect_vertices_follow_body(const dynamics::World& w, int i) {
-  const double c = std::cos(w.yaws()[i]), s = std::sin(w.yaws()[i]);
-  const auto& local = w.shape(i).vertices();
-  const auto world = w.world_vertices(i);
-  ASSERT_EQ(world.size(), local.size());
-  for (std::size_t k = 0; k < local.size(); ++k) {
-    const Vec2 want = w.positions()[i] + geometry::rotate(local[k], c, s);
-    EXPECT_NEAR(world[k].x(), want.x(), 1e-12 * (1.0 + want.norm())) << "body " << i << " vertex " << k;
-    EXPECT_NEAR(world[k].y(), want.y(), 1e-12 * (1.0 + want.norm())) << "body " << i << " vertex " << k;
-  }
 }
 
 }  // namespace

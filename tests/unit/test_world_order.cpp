@@ -13,7 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <utility>
@@ -22,18 +22,12 @@
 #include "contact/narrow_phase_planar.h"
 #include "dense_pack.h"
 #include "dynamics/world.h"
-#include "forcing/drift.h"
+#include "world_checks.h"
 
 using namespace polyfloe;
 using geometry::Vec2;
 
 namespace {
-
-dynamics::WorldSettings no_drift() {
-  dynamics::WorldSettings ws;
-  ws.drift = forcing::DriftSettings::none();
-  return ws;
-}
 
 using IdPairs = std::set<std::pair<dynamics::BodyId, dynamics::BodyId>>;
 
@@ -62,17 +56,19 @@ IdPairs brute_force_contacts(const dynamics::World& w, int skip = -1) {
 }
 
 void expect_vertices_follow_bodies(const dynamics::World& w) {
-  for (int i = 0; i < static_cast<int>(w.size()); ++i) {
-    if (!w.positions()[i].allFinite()) continue;
-    const double c = std::cos(w.yaws()[i]), s = std::sin(w.yaws()[i]);
-    const auto& local = w.shape(i).vertices();
-    const auto world = w.world_vertices(i);
-    ASSERT_EQ(world.size(), local.size());
-    for (std::size_t k = 0; k < local.size(); ++k) {
-      const Vec2 want = w.positions()[i] + geometry::rotate(local[k], c, s);
-      ASSERT_LE((world[k] - want).norm(), 1e-12 * (1.0 + want.norm())) << "body " << w.id(i) << " vertex " << k;
-    }
-  }
+  for (int i = 0; i < static_cast<int>(w.size()); ++i)
+    if (w.positions()[i].allFinite()) tsupport::expect_vertices_follow_body(w, i);
+}
+
+// A loose pack (no walls) of about n floes, in a World.
+std::unique_ptr<dynamics::World> loose_pack(int n, std::uint64_t seed) {
+  tsupport::PackSpec ps;
+  ps.walls = false;
+  const tsupport::Pack pack = tsupport::make_pack(n, ps, seed);
+  auto w = std::make_unique<dynamics::World>(tsupport::no_drift());
+  for (const auto& d : pack.bodies) w->add_body(d);
+  w->step(1e-4);
+  return w;
 }
 
 }  // namespace
@@ -85,7 +81,7 @@ TEST(WorldOrder, TheOrderBodiesAreAddedInDoesNotChangeTheDynamics) {
   std::vector<dynamics::BodyDesc> shuffled = pack.bodies;
   std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937_64(5));
 
-  dynamics::World a(no_drift()), b(no_drift());
+  dynamics::World a(tsupport::no_drift()), b(tsupport::no_drift());
   for (const auto& d : pack.bodies) a.add_body(d);
   for (const auto& d : shuffled) b.add_body(d);
   const double dt = a.shortest_contact_duration(1.0) / 40.0;
@@ -108,12 +104,8 @@ TEST(WorldOrder, TheOrderBodiesAreAddedInDoesNotChangeTheDynamics) {
 }
 
 TEST(WorldOrder, BodiesThatJumpAcrossTheFieldKeepTheirShapesAndContacts) {
-  tsupport::PackSpec ps;
-  ps.walls = false;
-  const tsupport::Pack pack = tsupport::make_pack(300, ps, 4u);
-  dynamics::World w(no_drift());
-  for (const auto& d : pack.bodies) w.add_body(d);
-  w.step(1e-4);
+  const auto world = loose_pack(300, 4u);
+  dynamics::World& w = *world;
   EXPECT_EQ(contact_ids(w), brute_force_contacts(w));
   // Mirror the field through its centre in one step: every body crosses most others, so the slot order is
   // rebuilt from scratch; then mirror it back.
@@ -135,12 +127,8 @@ TEST(WorldOrder, BodiesThatJumpAcrossTheFieldKeepTheirShapesAndContacts) {
 }
 
 TEST(WorldOrder, ANonFiniteBodyLeavesTheOthersShapesAndContactsIntact) {
-  tsupport::PackSpec ps;
-  ps.walls = false;
-  const tsupport::Pack pack = tsupport::make_pack(200, ps, 6u);
-  dynamics::World w(no_drift());
-  for (const auto& d : pack.bodies) w.add_body(d);
-  w.step(1e-4);
+  const auto world = loose_pack(200, 6u);
+  dynamics::World& w = *world;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   w.set_velocity(17, Vec2{nan, 0.0}, 0.0);
   w.step(1e-4);
