@@ -60,7 +60,7 @@ for w in "${which[@]}"; do
       build-bench/tests/bench_stability --only impacts --only packs -o docs/data/stability_map.json
       build-bench/tests/bench_stability --only cost -o docs/data/step_cost.json
       /usr/bin/python3 postprocess/plot_stability.py docs/data/stability_map.json docs/data/step_cost.json \
-        --quadrature docs/data/drift_quadrature.json --out docs/figures
+        --quadrature docs/data/drift_quadrature.json --field docs/data/field_sampling.json --out docs/figures
       ;;
     cube_plate)
       cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -7,7 +7,7 @@ of each bottom-quadrature rule).
 
     build/tests/bench_stability -o docs/data/stability_map.json
     /usr/bin/python3 postprocess/plot_stability.py docs/data/stability_map.json \\
-        --quadrature docs/data/drift_quadrature.json --out docs/figures
+        --quadrature docs/data/drift_quadrature.json --field docs/data/field_sampling.json --out docs/figures
 
 stability_map.png: (a) the smallest stable number of steps per contact duration t_c for binary impacts of random
 floes, by mass ratio, stiffness and contact setting, against the Verlet prediction for an undamped Hertz impact
@@ -18,7 +18,10 @@ speed_accuracy.png: error against CPU time per floe to simulate one contact dura
 times the steps per contact). Time step: the energy-norm error of the velocities after binary impacts (median and
 90th percentile over pairs, the scenes' contact setting, all stiffnesses and mass ratios) at n steps per contact,
 at the default quadrature's step cost. Quadrature: the skin-drag torque error of each rule (sheared current) at
-its step cost and the default 40 steps per contact.
+its step cost and the default 40 steps per contact. Ocean field (docs/data/field_sampling.json,
+tests/bench/bench_field_sampling): the ocean-load torque error on floes in the OpenFOAM strait for each field-file
+grid spacing and the direct probe of the mesh (degree2), at the default step cost plus that sampling's cost per
+floe (an upper bound: the step's own uniform-current drag is counted too), times 40 steps per contact.
 """
 import argparse
 import json
@@ -31,6 +34,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from plot_drift_quadrature import read_rows  # noqa: E402  (same folder)
+from plot_field_sampling import load as load_field_rows  # noqa: E402  (same folder)
 
 GUARD_FLOOR = 10.0  # dynamics::kMinStepsPerContact (dem/dynamics/world.h): the run guard floor
 DEFAULT_STEPS = 40.0
@@ -58,18 +62,21 @@ def quadrature_errors(path):
     return {rule: r[1] for (field, rule), r in rows.items() if field == "shear"}
 
 
-def log_axes(ax, xlabel, ylabel, title, legend_loc):
+def log_axes(ax, xlabel, ylabel, title, legend_loc, below=False):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title)
-    ax.legend(fontsize=7, loc=legend_loc)
+    if below:  # under the axes, clear of the data
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=1)
+    else:
+        ax.legend(fontsize=7, loc=legend_loc)
 
 
 def save(fig, out, name):
     fig.tight_layout()
-    fig.savefig(os.path.join(out, name), dpi=130)
+    fig.savefig(os.path.join(out, name), dpi=130, bbox_inches="tight")  # a legend below the axes included
     print(f"wrote {os.path.join(out, name)}")
 
 
@@ -116,12 +123,30 @@ def stability_map(d, out):
     save(fig, out, "stability_map.png")
 
 
-def speed_accuracy(d, quad, out):
+def field_grid_series(field, step_cost):
+    """(x, y, names) of the ocean-field series: for each grid spacing (and the direct probe) with the default rule,
+    the step cost plus the field's ocean-load evaluation per floe, times the default steps per contact, against the
+    ocean-load torque error in the OpenFOAM strait."""
+    pts = []
+    for (source, rule), (ns, _force, torque) in field.items():
+        if rule != DEFAULT_RULE:
+            continue
+        if source.startswith("grid "):
+            spacing = float(source.split()[1])
+            pts.append((-spacing, f"{spacing:g} m", ns, torque))
+        elif source == "direct":
+            pts.append((0.0, "direct", ns, torque))
+    pts.sort()
+    x = [(step_cost + ns / 1000.0) * DEFAULT_STEPS for _, _, ns, _ in pts]
+    return x, [p[3] for p in pts], [p[1] for p in pts]
+
+
+def speed_accuracy(d, quad, field, out):
     if "step_cost" not in d or "impacts" not in d:
         print("speed_accuracy.png needs the impacts and step_cost sections; skipped")
         return
     cost = {r["quadrature"]: r["us_per_floe_step"] for r in d["step_cost"]}
-    fig, ax = plt.subplots(figsize=(7, 4.6))
+    fig, ax = plt.subplots(figsize=(8, 6))
     ns = d["steps_per_contact"]
     cells = [c for c in d["impacts"] if c["setting"] == "scenes"]
 
@@ -147,6 +172,16 @@ def speed_accuracy(d, quad, out):
     ax.plot(qx, qy, "s-", color="tab:blue", label="bottom quadrature at 40 steps per contact (skin-drag torque error)")
     for xx, yy, nm in zip(qx, qy, names):
         ax.annotate(nm, (xx, yy), textcoords="offset points", xytext=(4, 4), fontsize=7)
+    if field:
+        fx, fy, fnames = field_grid_series(field, cost[DEFAULT_RULE])
+        ax.plot(fx, fy, "^-", color="tab:green",
+                label="ocean-field grid and the direct probe, degree2 (ocean-load torque error, OpenFOAM strait)")
+        for xx, yy, nm in zip(fx, fy, fnames):
+            ax.annotate(nm, (xx, yy), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        if ("grid 5 m", DEFAULT_RULE) in field:
+            ns5, _, t5 = field[("grid 5 m", DEFAULT_RULE)]
+            ax.scatter([(cost[DEFAULT_RULE] + ns5 / 1000.0) * DEFAULT_STEPS], [t5], marker="*", s=220, color="gold",
+                       edgecolor="k", zorder=5)
     i40 = ns.index(DEFAULT_STEPS)
     ax.scatter([cost[DEFAULT_RULE] * DEFAULT_STEPS], [median([c["error_p50"][i40] for c in cells])], marker="*",
                s=220, color="gold", edgecolor="k", zorder=5, label="defaults (40 steps per contact, degree2)")
@@ -154,7 +189,7 @@ def speed_accuracy(d, quad, out):
         ax.scatter([cost[DEFAULT_RULE] * DEFAULT_STEPS], [quad[DEFAULT_RULE]], marker="*", s=220, color="gold",
                    edgecolor="k", zorder=5)
     log_axes(ax, "CPU per floe per contact duration [us] (1,500-floe jammed pack, one core)",
-             "relative error against a converged reference", "Speed against accuracy", "lower left")
+             "relative error against a converged reference", "Speed against accuracy", "lower left", below=True)
     save(fig, out, "speed_accuracy.png")
 
 
@@ -162,12 +197,15 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("json", nargs="+", help="bench_stability JSON file(s)")
     ap.add_argument("--quadrature", default="docs/data/drift_quadrature.json", help="bench_drift JSON")
+    ap.add_argument("--field", default="docs/data/field_sampling.json",
+                    help="bench_field_sampling JSON (the ocean-field grid series); '' for none")
     ap.add_argument("--out", default="docs/figures", help="folder for the PNG files")
     a = ap.parse_args()
     d = load(a.json)
+    field = load_field_rows(a.field) if a.field else None
     os.makedirs(a.out, exist_ok=True)
     stability_map(d, a.out)
-    speed_accuracy(d, quadrature_errors(a.quadrature), a.out)
+    speed_accuracy(d, quadrature_errors(a.quadrature), field, a.out)
     return 0
 
 

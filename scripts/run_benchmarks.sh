@@ -42,7 +42,7 @@ run() {
   "$@"
 }
 
-# Configure (Release) and build only the two benchmark targets.
+# Configure (Release) and build only the benchmark targets it runs.
 generator=()
 if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
 run cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
