@@ -61,7 +61,8 @@ void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<cons
   const std::size_t tile_cells = static_cast<std::size_t>(tw) * th;
   const std::size_t padded_cells = static_cast<std::size_t>(ntx) * ((ny + th - 1) / th) * tile_cells;
   auto cell_id = [&](int x, int y) {
-    return (static_cast<std::size_t>(y / th) * ntx + x / tw) * tile_cells + static_cast<std::size_t>(y % th) * tw + x % tw;
+    return (static_cast<std::size_t>(y / th) * ntx + x / tw) * tile_cells + static_cast<std::size_t>(y % th) * tw +
+           x % tw;
   };
   const double inv = 1.0 / cell_;
   auto cx = [&](double x) { return std::clamp(static_cast<int>((x - lo.x()) * inv), 0, nx - 1); };

@@ -114,7 +114,8 @@ void World::contact_forces(double dt) {
     // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
     // penetration).
     if (gradient) k.mu *= std::max(0.0, dir_b.dot(g.normal));
-    r.cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), cache_.previous(key, cache_hint_[polyfloe_thread_index()].at), dt);
+    const double spring = cache_.previous(key, cache_hint_[polyfloe_thread_index()].at);
+    r.cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), spring, dt);
     // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
     const double km = k.k_n / k.m_star;
     r.v2 = rate * rate + 0.8 * km * g.depth * g.depth * std::sqrt(g.depth);

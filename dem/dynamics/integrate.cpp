@@ -116,8 +116,11 @@ void World::update_shape(int i) {
 namespace {
 
 // The cell of a position on a grid of `cell` [m] anchored at the origin, numbered tile by tile as the broad phase
-// numbers its cells (16 x 16 cells per tile; row-major inside a tile and between tiles). A non-finite position (a
-// body that blew up; the run guard reports it) sorts last.
+// numbers its cells (kTile x kTile cells per tile; row-major inside a tile and between tiles). A non-finite
+// position (a body that blew up; the run guard reports it) sorts last.
+constexpr int kTileBits = 4;
+static_assert(contact::GridBroadPhase::kTile == 1 << kTileBits, "slots and the broad phase share their tiles");
+
 std::uint64_t slot_key(const Vec2& p, double cell) {
   const double inv = 1.0 / cell;
   const double x = std::floor(p.x() * inv), y = std::floor(p.y() * inv);
@@ -125,7 +128,9 @@ std::uint64_t slot_key(const Vec2& p, double cell) {
   if (!(std::abs(x) < lim) || !(std::abs(y) < lim)) return ~std::uint64_t{0};
   const auto ux = static_cast<std::uint64_t>(static_cast<std::int64_t>(x) + 2147483648LL);  // < 2^32
   const auto uy = static_cast<std::uint64_t>(static_cast<std::int64_t>(y) + 2147483648LL);
-  return ((uy >> 4) << 36) | ((ux >> 4) << 8) | ((uy & 15u) << 4) | (ux & 15u);
+  constexpr std::uint64_t in_tile = (1u << kTileBits) - 1;
+  return ((uy >> kTileBits) << (32 + kTileBits)) | ((ux >> kTileBits) << (2 * kTileBits)) |
+         ((uy & in_tile) << kTileBits) | (ux & in_tile);
 }
 
 bool slot_less(const auto& a, const auto& b) { return a.key != b.key ? a.key < b.key : a.body < b.body; }
@@ -170,10 +175,9 @@ void World::sort_slots() {
       const int i = slots_[k].body;
       body_slot_[i] = k;
       vert_begin_[i] = off;
-      const int nv = vert_off_[i + 1] - vert_off_[i];
-      slot_static_[k] = {is_dynamic_[i] ? mass_[i] : contact::kInfinite, radius_[i], id_[i], i, off, nv};
+      slot_static_[k] = slot_static_of(i, off);
       slot_dynamic_[k] = is_dynamic_[i];
-      off += nv;
+      off += slot_static_[k].vert_count;
     }
     for (int k = first; k <= last; ++k)
       if (motion_[slots_[k].body] == Motion::fixed) update_shape(slots_[k].body);

@@ -75,13 +75,17 @@ int World::add_body(const BodyDesc& d) {
   }
   slots_.push_back({~std::uint64_t{0}, i});
   body_slot_.push_back(i);
-  slot_static_.push_back({dyn ? pm.mass : contact::kInfinite, radius_.back(), d.id, i, vert_begin_[i],
-                          static_cast<int>(d.shape->size())});
-  slot_dynamic_.push_back(dyn ? 1 : 0);
+  slot_static_.push_back(slot_static_of(i, vert_begin_[i]));
+  slot_dynamic_.push_back(is_dynamic_[i]);
   boxes_.emplace_back();
   update_shape(i);
   forces_ready_ = false;
   return i;
+}
+
+World::SlotStatic World::slot_static_of(int i, int vert_begin) const {
+  return {is_dynamic_[i] ? mass_[i] : contact::kInfinite, radius_[i], id_[i], i, vert_begin,
+          vert_off_[i + 1] - vert_off_[i]};
 }
 
 int World::index_of(BodyId id) const {

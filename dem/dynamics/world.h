@@ -205,6 +205,9 @@ class World {
   void update_shape(int i);
   // Re-sorts the contact stage's slots (below) by the bodies' current positions and lays out the moved ones anew.
   void sort_slots();
+  // Body i's packed slot data, its vertices starting at `vert_begin` in world_xy_.
+  struct SlotStatic;
+  SlotStatic slot_static_of(int i, int vert_begin) const;
   void contact_forces(double dt);
   void drift_forces(double t);
   void bond_forces(double t);
@@ -248,8 +251,9 @@ class World {
   std::vector<Vec2> world_xy_;
   std::vector<Vec2> rotation_;  // (cos yaw, sin yaw) of the world-frame shape
 
-  // The contact stage works on "slots": the bodies sorted by position (rows of order_cell_ along y, then x; ties
-  // by index), so that bodies close in space are close in memory whatever order they were added in. The order is
+  // The contact stage works on "slots": the bodies sorted by position (cells of order_cell_ numbered tile by tile,
+  // as the broad phase numbers its cells; ties by index), so that bodies close in space are close in memory
+  // whatever order they were added in. The order is
   // a function of the current positions alone (restarts reproduce it) and is re-sorted every step (insertion sort
   // from the last order: O(N) while floes keep their neighbours). Indices stay the public handle; slots are
   // private to the step. World-frame vertices and boxes are stored in slot order.
@@ -257,7 +261,7 @@ class World {
     std::uint64_t key = 0;
     int body = 0;
   };
-  struct SlotStatic {  // rewritten when the order changes
+  struct SlotStatic {  // a packed copy of body data the pair loop reads; rewritten where the order changes
     double mass = 0.0;    // [kg], +inf unless dynamic
     double radius = 0.0;  // [m], +inf unless dynamic
     BodyId id = 0;
