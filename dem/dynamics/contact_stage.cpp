@@ -9,31 +9,146 @@
 
 namespace polyfloe::dynamics {
 
-void World::contact_forces(double dt) {
-  using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  // Everything below works on slots (bodies sorted by position, world.h): the pairs, the bodies' hot state and
-  // the force sums are read and written in memory order close to the order of space.
+// The grid's pairs of `boxes` (by slot) into pairs_: on one thread, or its scan split into consecutive tile
+// ranges, scanned in parallel and concatenated in order (the same list as the serial scan).
+void World::grid_pairs(std::span<const geometry::Aabb> boxes) {
   if (threads_ == 1) {
-    broad_.find_pairs(boxes_, slot_dynamic_, pairs_);
-  } else {
-    // The grid's scan split into consecutive tile ranges, scanned in parallel and concatenated in order: the same
-    // list as the serial scan.
-    broad_.build(boxes_, slot_dynamic_);
-    const std::size_t tiles = broad_.tile_count();
-    const int chunks = static_cast<int>(std::min<std::size_t>(tiles, 8 * static_cast<std::size_t>(threads_)));
-    pair_chunks_.resize(static_cast<std::size_t>(std::max(chunks, 1)));
-    POLYFLOE_OMP_FOR_DYNAMIC(threads_)
-    for (int c = 0; c < chunks; ++c) {
-      std::vector<contact::CandidatePair>& out = pair_chunks_[static_cast<std::size_t>(c)];
-      out.clear();
-      broad_.scan_tiles(tiles * c / chunks, tiles * (c + 1) / chunks, out);
+    broad_.find_pairs(boxes, slot_dynamic_, pairs_);
+    return;
+  }
+  broad_.build(boxes, slot_dynamic_);
+  const std::size_t tiles = broad_.tile_count();
+  const int chunks = static_cast<int>(std::min<std::size_t>(tiles, 8 * static_cast<std::size_t>(threads_)));
+  pair_chunks_.resize(static_cast<std::size_t>(std::max(chunks, 1)));
+  POLYFLOE_OMP_FOR_DYNAMIC(threads_)
+  for (int c = 0; c < chunks; ++c) {
+    std::vector<contact::CandidatePair>& out = pair_chunks_[static_cast<std::size_t>(c)];
+    out.clear();
+    broad_.scan_tiles(tiles * c / chunks, tiles * (c + 1) / chunks, out);
+  }
+  pairs_.clear();
+  for (int c = 0; c < chunks; ++c)
+    pairs_.insert(pairs_.end(), pair_chunks_[static_cast<std::size_t>(c)].begin(),
+                  pair_chunks_[static_cast<std::size_t>(c)].end());
+}
+
+bool World::skin_outrun() const {
+  if (skin_pos_.size() != size()) return true;
+  const double half = 0.5 * skin_;
+  for (std::size_t i = 0; i < size(); ++i) {
+    // No vertex of body i has moved further than this since the build (a rotation by dθ moves a vertex at r by
+    // 2 r sin(dθ/2) <= r |dθ|); NaN counts as too far.
+    const double moved = (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
+    if (!(moved <= half)) return true;
+  }
+  return false;
+}
+
+namespace {
+
+// Lexicographic order of slot pairs (a, b), a < b: the order the contact stage takes them in.
+bool pair_less(const contact::CandidatePair& p, const contact::CandidatePair& q) {
+  return p.a != q.a ? p.a < q.a : p.b < q.b;
+}
+
+}  // namespace
+
+void World::build_skin() {
+  // The grid's pairs of the boxes grown by half the skin, sorted by slot, as neighbour lists of the build's slots:
+  // the pair (a, b), a < b, in the list of a. The slots move little between builds, so a slot's list is mostly
+  // where the current slot would look for it, and so are its partners (checked, else found through the body).
+  const int n = static_cast<int>(size());
+  const double half = 0.5 * skin_;
+  skin_boxes_.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) skin_boxes_[k] = {boxes_[k].lo.array() - half, boxes_[k].hi.array() + half};
+  grid_pairs(skin_boxes_);
+  std::sort(pairs_.begin(), pairs_.end(), pair_less);
+  skin_off_.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (const contact::CandidatePair& p : pairs_) ++skin_off_[static_cast<std::size_t>(p.a) + 1];
+  for (int k = 0; k < n; ++k) skin_off_[k + 1] += skin_off_[k];
+  skin_adj_.resize(pairs_.size());
+  for (std::size_t e = 0; e < pairs_.size(); ++e) skin_adj_[e] = pairs_[e].b;  // sorted: the lists in order
+  skin_body_.resize(static_cast<std::size_t>(n));
+  skin_slot_.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    skin_body_[k] = slots_[k].body;
+    skin_slot_[slots_[k].body] = k;
+  }
+  skin_pos_ = pos_;
+  skin_yaw_ = yaw_;
+  ++skin_builds_;
+}
+
+void World::candidate_pairs() {
+  // The pairs whose boxes overlap now, found among the neighbour lists of the last build (a superset while no
+  // vertex has moved more than half the skin), as slot pairs (a, b), a < b, sorted by a, then b. The list is a
+  // function of the current boxes and slots alone, whenever the neighbour lists were built: a restarted run and
+  // any number of threads find it in the same order.
+  if (skin_outrun()) build_skin();
+  const int n = static_cast<int>(size());
+  const int chunks = threads_ == 1 ? 1 : std::min(n, 8 * threads_);
+  pair_chunks_.resize(static_cast<std::size_t>(std::max(chunks, 1)));
+  POLYFLOE_OMP_FOR_DYNAMIC(threads_)
+  for (int c = 0; c < chunks; ++c) {
+    std::vector<contact::CandidatePair>& out = pair_chunks_[static_cast<std::size_t>(c)];
+    out.clear();
+    std::size_t m = 0;
+    for (int k = static_cast<int>(static_cast<long long>(n) * c / chunks),
+             k1 = static_cast<int>(static_cast<long long>(n) * (c + 1) / chunks);
+         k < k1; ++k) {
+      const int i = slots_[k].body;
+      const int built = skin_body_[k] == i ? k : skin_slot_[i];  // this body's slot at the build
+      const int e0 = skin_off_[built], e1 = skin_off_[built + 1];
+      out.resize(m + static_cast<std::size_t>(e1 - e0));
+      const geometry::Aabb box = boxes_[k];
+      // Without branches (whether a listed pair overlaps is a coin toss to the predictor): every pair is written,
+      // the kept ones advance the end.
+      for (int e = e0; e < e1; ++e) {
+        const int sb = skin_adj_[static_cast<std::size_t>(e)];  // the partner's slot at the build ...
+        const int j = skin_body_[sb];
+        const int s = slots_[sb].body == j ? sb : body_slot_[j];  // ... and now
+        const geometry::Aabb& o = boxes_[s];
+        const bool hit = (box.lo.x() <= o.hi.x()) & (o.lo.x() <= box.hi.x()) & (box.lo.y() <= o.hi.y()) &
+                         (o.lo.y() <= box.hi.y());
+        out[m] = {std::min(k, s), std::max(k, s)};
+        m += hit;
+      }
     }
+    out.resize(m);
+  }
+  if (chunks == 1) {
+    pairs_.swap(pair_chunks_[0]);
+  } else {
     pairs_.clear();
     for (int c = 0; c < chunks; ++c)
       pairs_.insert(pairs_.end(), pair_chunks_[static_cast<std::size_t>(c)].begin(),
                     pair_chunks_[static_cast<std::size_t>(c)].end());
   }
+  // Sorted as built; slots that swapped since move a few pairs out of order: an insertion sort puts them back,
+  // and past a budget of moves (bodies that crossed many others, or the slots sorted anew since the build) a full
+  // sort, and the lists are rebuilt next time. Both give the one sorted order.
+  std::size_t moves = 0;
+  const std::size_t budget = 4 * pairs_.size() + 64;
+  for (std::size_t u = 1; u < pairs_.size() && moves <= budget; ++u) {
+    if (!pair_less(pairs_[u], pairs_[u - 1])) continue;
+    const contact::CandidatePair x = pairs_[u];
+    std::size_t v = u;
+    for (; v > 0 && pair_less(x, pairs_[v - 1]); --v) pairs_[v] = pairs_[v - 1];
+    pairs_[v] = x;
+    moves += u - v;
+  }
+  if (moves > budget) {
+    std::sort(pairs_.begin(), pairs_.end(), pair_less);
+    skin_pos_.clear();  // the lists' order is stale: rebuild them at the next evaluation
+  }
+}
+
+void World::contact_forces(double dt) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  // Everything below works on slots (bodies sorted by position, world.h): the pairs, the bodies' hot state and
+  // the force sums are read and written in memory order close to the order of space.
+  candidate_pairs();
   const auto t1 = clock::now();
 
   const int n = static_cast<int>(size());

@@ -73,6 +73,10 @@ int World::add_body(const BodyDesc& d) {
     ++dynamic_count_;
     order_cell_ = 4.0 * radius_sum_ / dynamic_count_;
   }
+  skin_ = settings_.broad_phase_skin > 0.0 ? settings_.broad_phase_skin
+                                           : dynamic_count_ > 0 ? 0.2 * radius_sum_ / dynamic_count_ : 1.0;
+  reach_.push_back(d.shape->circumradius());
+  skin_pos_.clear();  // rebuilt at the next evaluation
   slots_.push_back({~std::uint64_t{0}, i});
   body_slot_.push_back(i);
   slot_static_.push_back(slot_static_of(i, vert_begin_[i]));

@@ -43,6 +43,9 @@ struct WorldSettings {
   PlanarNarrowPhase narrow_phase = PlanarNarrowPhase::exact;
   forcing::DriftSettings drift;
   double broad_phase_cell = 0.0;  // grid cell size [m]; 0 = automatic
+  // Skin of the broad phase's neighbour lists [m]; 0 = automatic (0.2 x the mean equivalent radius of the dynamic
+  // bodies). A speed knob only: the contacts found, their order and so every result are the same for any value.
+  double broad_phase_skin = 0.0;
 };
 
 // What a contact record keeps of the narrow phase's measurement (contact::PlanarContact less the terms only the
@@ -176,6 +179,8 @@ class World {
   const WorldSettings& settings() const { return settings_; }
   const contact::ContactLaw& contact_law() const { return law_; }
   const StepProfile& profile() const { return profile_; }
+  // How often the broad phase's neighbour lists were rebuilt (a diagnostic of the skin; see WorldSettings).
+  std::uint64_t neighbour_list_builds() const { return skin_builds_; }
 
   // The state a checkpoint needs (see WorldState), and its restoration into a World built from the same scene.
   // restore() throws std::invalid_argument, naming the first mismatch, when the bodies (ids, order) or the bonds
@@ -209,6 +214,13 @@ class World {
   struct SlotStatic;
   SlotStatic slot_static_of(int i, int vert_begin) const;
   void contact_forces(double dt);
+  // The broad phase (contact_stage.cpp): candidate_pairs() fills pairs_ with the slot pairs whose boxes overlap,
+  // from neighbour lists that build_skin() rebuilds (grid_pairs() on the boxes grown by the skin) once a body has
+  // moved half the skin since (skin_outrun()).
+  void candidate_pairs();
+  void grid_pairs(std::span<const geometry::Aabb> boxes);
+  bool skin_outrun() const;
+  void build_skin();
   void drift_forces(double t);
   void bond_forces(double t);
 
@@ -285,6 +297,18 @@ class World {
   std::vector<geometry::Aabb> boxes_;  // world-frame bounding boxes, by slot
   std::vector<Vec2> slot_force_;       // contact force and torque of the current evaluation, by slot
   std::vector<double> slot_torque_;
+  // The broad phase's neighbour lists ("Verlet lists"): the pairs whose boxes, grown by skin_ / 2 on every side,
+  // overlapped at the last build, as a neighbour list per body; valid while no vertex has moved more than skin_ / 2
+  // since (then every pair whose boxes overlap now is among them).
+  double skin_ = 0.0;                   // [m], WorldSettings::broad_phase_skin or 0.2 x the mean equivalent radius
+  std::vector<double> reach_;           // circumradius about the centroid, by body [m]
+  std::vector<Vec2> skin_pos_;          // poses at the last build, by body
+  std::vector<double> skin_yaw_;
+  // Neighbour lists by the build's slots (CSR; each pair once, in its lower slot's list), and the build's
+  // slot -> body and body -> slot.
+  std::vector<int> skin_off_, skin_adj_, skin_body_, skin_slot_;
+  std::vector<geometry::Aabb> skin_boxes_;
+  std::uint64_t skin_builds_ = 0;
   // scratch
   int threads_ = 1;
   std::vector<contact::CandidatePair> pairs_;

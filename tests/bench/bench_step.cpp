@@ -167,6 +167,7 @@ void run(benchmark::State& state, Kind kind) {
   const double floe_steps = static_cast<double>(state.iterations()) * pack.floes;
   state.SetItemsProcessed(static_cast<std::int64_t>(floe_steps));
   state.counters["floes"] = pack.floes;
+  state.counters["list_builds"] = static_cast<double>(world.neighbour_list_builds());
   state.counters["threads"] = threads;
   state.counters["dt_ms"] = 1e3 * dt;
   state.counters["area_fraction"] = pack.area_fraction;

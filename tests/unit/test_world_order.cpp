@@ -6,6 +6,9 @@
 //   - Bodies that jump across the whole field in one step (every body crosses most others: the full-sort path)
 //     keep world-frame vertices that follow them (1e-12 m) and get exactly the contacts a brute-force narrow phase
 //     over every pair finds.
+//   - The broad phase's neighbour lists: the same jostling pack with a skin so thin that the lists are rebuilt
+//     nearly every step, the automatic skin, and one wider than the floes (built once) gives bitwise the same
+//     positions and velocities and exactly the contacts a brute-force narrow phase finds, at every step checked.
 //   - A body whose state becomes non-finite sorts last, has no contact, and leaves the others' shapes and contacts
 //     intact (the broad phase used to hang on a NaN box).
 #include <gtest/gtest.h>
@@ -141,4 +144,41 @@ TEST(WorldOrder, ANonFiniteBodyLeavesTheOthersShapesAndContactsIntact) {
   w.step(1e-4);
   expect_vertices_follow_bodies(w);
   EXPECT_EQ(contact_ids(w), brute_force_contacts(w, 17));
+}
+
+TEST(WorldOrder, TheNeighbourListSkinChangesHowOftenTheListsAreBuiltAndNothingElse) {
+  tsupport::PackSpec ps;
+  ps.speed = 0.3;  // [m/s]: about 0.3 mm per step, 6 x the thin skin's half
+  const tsupport::Pack pack = tsupport::make_pack(300, ps, 8u);
+  std::vector<std::unique_ptr<dynamics::World>> worlds;
+  for (const double skin : {1e-4, 0.0, 50.0}) {  // [m]; 0 = automatic
+    dynamics::WorldSettings ws = tsupport::no_drift();
+    ws.broad_phase_skin = skin;
+    worlds.push_back(std::make_unique<dynamics::World>(ws));
+    for (const auto& d : pack.bodies) worlds.back()->add_body(d);
+  }
+  const double dt = worlds[0]->shortest_contact_duration(1.0) / 40.0;
+  for (int step = 1; step <= 200; ++step) {
+    for (auto& w : worlds) w->step(dt);
+    if (step % 25 != 0) continue;
+    const IdPairs want = brute_force_contacts(*worlds[0]);
+    ASSERT_FALSE(want.empty());
+    for (std::size_t k = 0; k < worlds.size(); ++k) {
+      const dynamics::World& w = *worlds[k];
+      EXPECT_EQ(contact_ids(w), want) << "world " << k << ", step " << step;
+      for (int i = 0; i < static_cast<int>(w.size()); ++i) {
+        ASSERT_EQ(w.positions()[i], worlds[0]->positions()[i]) << "world " << k << ", body " << i << ", step " << step;
+        ASSERT_EQ(w.velocities()[i], worlds[0]->velocities()[i]) << "world " << k << ", body " << i;
+        ASSERT_EQ(w.yaws()[i], worlds[0]->yaws()[i]) << "world " << k << ", body " << i;
+      }
+    }
+  }
+  // The thin skin rebuilt the lists at most steps, the wide one once the slots were sorted, the automatic one
+  // in between.
+  const std::uint64_t thin = worlds[0]->neighbour_list_builds(), automatic = worlds[1]->neighbour_list_builds(),
+                      wide = worlds[2]->neighbour_list_builds();
+  EXPECT_GT(thin, 100u);
+  EXPECT_LE(wide, 3u);
+  EXPECT_LT(automatic, thin);
+  EXPECT_GE(automatic, wide);
 }
