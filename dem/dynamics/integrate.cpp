@@ -102,10 +102,11 @@ void World::drift(double dt) {
 void World::update_shape(int i) {
   const double c = std::cos(yaw_[i]), s = std::sin(yaw_[i]);
   rotation_[i] = {c, s};
-  const auto& local = shape_[i]->vertices();
+  const Vec2* local = local_xy_.data() + vert_off_[i];
+  const int count = vert_off_[i + 1] - vert_off_[i];
   Vec2* out = world_xy_.data() + vert_begin_[i];
   geometry::Aabb box{pos_[i], pos_[i]};
-  for (std::size_t k = 0; k < local.size(); ++k) {
+  for (int k = 0; k < count; ++k) {
     out[k] = pos_[i] + geometry::rotate(local[k], c, s);
     box.lo = box.lo.cwiseMin(out[k]);
     box.hi = box.hi.cwiseMax(out[k]);

@@ -66,6 +66,7 @@ int World::add_body(const BodyDesc& d) {
   vert_off_.push_back(vert_off_.back() + d.shape->size());
   vert_begin_.push_back(vert_off_[i]);
   world_xy_.resize(static_cast<std::size_t>(vert_off_.back()));
+  local_xy_.insert(local_xy_.end(), d.shape->vertices().begin(), d.shape->vertices().end());
   rotation_.emplace_back(1.0, 0.0);
   // A new body takes the last slot (its vertices go at the end of world_xy_); the next step sorts the slots.
   if (dyn) {

@@ -261,6 +261,7 @@ class World {
   std::vector<int> vert_off_{0};  // prefix sums of the vertex counts, in body order (vertex count = difference)
   std::vector<int> vert_begin_;   // where body i's world-frame vertices start in world_xy_ (slot order, below)
   std::vector<Vec2> world_xy_;
+  std::vector<Vec2> local_xy_;  // body-frame vertices, in body order (vert_off_): read without a pointer chase
   std::vector<Vec2> rotation_;  // (cos yaw, sin yaw) of the world-frame shape
 
   // The contact stage works on "slots": the bodies sorted by position (cells of order_cell_ numbered tile by tile,
