@@ -101,7 +101,10 @@ std::string resolved_yaml(const Scene& s) {
     << "  # level floes: exact overlap polygon, or the paper's GJK-EPA (comparison)\n"
     << "  force_model: " << (c.force_model == contact::ForceModel::gradient ? "gradient" : "centroid") << "\n"
     << "  broad_phase_cell: "
-    << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n";
+    << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n"
+    << "  broad_phase_skin: "
+    << (s.world.broad_phase_skin > 0.0 ? fmt(s.world.broad_phase_skin) : std::string("auto"))
+    << "  # [m] speed only: the contacts are the same for any value\n";
   if (!s.spatial) {  // spatial scenes have neither drift forcing nor floes
     const forcing::DriftSettings& d = s.world.drift;
     auto term = [&](bool enabled, double c) {

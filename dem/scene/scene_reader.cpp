@@ -115,6 +115,10 @@ void read_contact(MapReader m, dynamics::WorldSettings& w) {
   if (w.broad_phase_cell > 0.0) cell = w.broad_phase_cell;
   m.number_or_auto("broad_phase_cell", cell, positive("m"));
   w.broad_phase_cell = cell.value_or(0.0);
+  std::optional<double> skin;
+  if (w.broad_phase_skin > 0.0) skin = w.broad_phase_skin;
+  m.number_or_auto("broad_phase_skin", skin, positive("m"));
+  w.broad_phase_skin = skin.value_or(0.0);
   m.finish();
 }
 

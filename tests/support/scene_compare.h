@@ -54,6 +54,7 @@ inline void expect_same_settings(const Scene& a, const Scene& b) {
   EXPECT_EQ(ca.friction, cb.friction);
   EXPECT_EQ(ca.damping, cb.damping);
   EXPECT_EQ(a.world.broad_phase_cell, b.world.broad_phase_cell);
+  EXPECT_EQ(a.world.broad_phase_skin, b.world.broad_phase_skin);
   EXPECT_EQ(a.world.narrow_phase, b.world.narrow_phase);
   ASSERT_EQ(a.spatial.has_value(), b.spatial.has_value());
   if (a.spatial) {

@@ -181,17 +181,20 @@ TEST(SceneReader, ExplicitBodyKeys) {
 TEST(SceneReader, AutoAndNumbers) {
   const Scene s = parse_scene(std::string(kOneFloe) +
                                   "run: {dt: 1.0e-4, reference_speed: +2.5, steps_per_contact: 50}\n"
-                                  "contact: {broad_phase_cell: 30, damping_model: paper}\n",
+                                  "contact: {broad_phase_cell: 30, broad_phase_skin: 0.5, damping_model: paper}\n",
                               "t.yaml", {});
   EXPECT_EQ(s.time.dt, 1.0e-4);
   EXPECT_EQ(s.time.reference_speed, 2.5);
   EXPECT_EQ(s.time.steps_per_contact, 50.0);
   EXPECT_EQ(s.world.broad_phase_cell, 30.0);
+  EXPECT_EQ(s.world.broad_phase_skin, 0.5);
   EXPECT_EQ(s.world.contact.damping, contact::DampingModel::paper);
-  const Scene a = parse_scene(std::string(kOneFloe) + "run: {dt: auto}\ncontact: {broad_phase_cell: auto}\n",
+  const Scene a = parse_scene(std::string(kOneFloe) +
+                                  "run: {dt: auto}\ncontact: {broad_phase_cell: auto, broad_phase_skin: auto}\n",
                               "t.yaml", {});
   EXPECT_FALSE(a.time.dt.has_value());
   EXPECT_EQ(a.world.broad_phase_cell, 0.0);
+  EXPECT_EQ(a.world.broad_phase_skin, 0.0);
 }
 
 // --- errors, each with where and which key ---
@@ -202,7 +205,7 @@ TEST(SceneErrors, UnknownKeyNamesLineAndAllowedKeys) {
                                     "  restitution: 0.5\n"
                                     "  restitutoin: 0.4\n");
   EXPECT_TRUE(starts_with(m, "t.yaml:5:3: unknown key 'contact.restitutoin'; allowed in 'contact': restitution, "
-                             "friction, damping_model, narrow_phase, force_model, broad_phase_cell"))
+                             "friction, damping_model, narrow_phase, force_model, broad_phase_cell, broad_phase_skin"))
       << m;
   const std::string top = parse_error(std::string(kOneFloe) + "flooes: []\n");
   EXPECT_TRUE(starts_with(top, "t.yaml:3:1: unknown key 'flooes'; allowed at the top level: name, run, ")) << top;
