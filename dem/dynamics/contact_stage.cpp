@@ -281,6 +281,8 @@ void World::contact_forces(double dt) {
   }
   const auto t2 = clock::now();
   profile_.broad += std::chrono::duration<double>(t1 - t0).count();
+  profile_.candidates += pairs_.size();
+  profile_.contacts += contacts_.size();
   profile_.narrow_and_law += std::chrono::duration<double>(t2 - t1).count();
 }
 

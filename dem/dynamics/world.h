@@ -73,6 +73,7 @@ struct ContactRecord {
 struct StepProfile {
   double integrate = 0.0, shapes = 0.0, broad = 0.0, narrow_and_law = 0.0, forcing = 0.0, bonds = 0.0;
   std::uint64_t steps = 0;
+  std::uint64_t candidates = 0, contacts = 0;  // broad-phase pairs and contacts, summed over the evaluations
 };
 
 // Everything that carries from one step to the next and is not rebuilt from the scene: what a checkpoint stores

@@ -467,6 +467,14 @@ RunSummary Simulation::run() {
                  "drift forces %.3f, bonds %.3f; total %.3f (%zu bodies, %llu steps)\n",
                  p.integrate * per, p.shapes * per, p.broad * per, p.narrow_and_law * per, p.forcing * per,
                  p.bonds * per, total * per, world_.size(), static_cast<unsigned long long>(p.steps));
+    const std::uint64_t builds = world_.neighbour_list_builds();
+    const double body_steps = static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world_.size();
+    std::fprintf(stderr,
+                 "contact search: %.2f candidate pairs and %.2f contacts per body-step; neighbour lists built %llu "
+                 "times (every %.0f steps; contact.broad_phase_skin)\n",
+                 static_cast<double>(p.candidates) / body_steps, static_cast<double>(p.contacts) / body_steps,
+                 static_cast<unsigned long long>(builds),
+                 static_cast<double>(p.steps) / static_cast<double>(std::max<std::uint64_t>(builds, 1)));
   }
   return s;
 }
