@@ -228,6 +228,26 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   return true;
 }
 
+double separation_lower_bound(std::span<const Vec2> a, std::span<const Vec2> b) {
+  double best = -std::numeric_limits<double>::infinity();
+  // s's edges against t's vertices: min over t of the distance beyond the edge's line.
+  auto scan = [&](std::span<const Vec2> s, std::span<const Vec2> t) {
+    const std::size_t n = s.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 e = s[(i + 1 == n) ? 0 : i + 1] - s[i];
+      const double len = e.norm();
+      if (!(len > 0.0)) continue;
+      const Vec2 u = perp_right(e) / len;
+      double sep = std::numeric_limits<double>::infinity();
+      for (const Vec2& q : t) sep = std::min(sep, u.dot(q - s[i]));
+      best = std::max(best, sep);
+    }
+  };
+  scan(a, b);
+  scan(b, a);
+  return best;
+}
+
 DepthGradient depth_gradient(const PlanarContact& g, const Vec2& x_a, const Vec2& x_b) {
   DepthGradient d;
   const Vec2 da = x_a - g.point, db = x_b - g.point;  // body centres relative to the centroid

@@ -58,6 +58,11 @@ struct DepthGradient {
 // `c` must come from planar_overlap(..., with_gradient = true).
 DepthGradient depth_gradient(const PlanarContact& c, const Vec2& x_a, const Vec2& x_b);
 
+// A lower bound of the distance between two convex polygons [m]: the largest separation along the outward normals
+// of their edges (separating axes). Exact when the closest features are a vertex and an edge; <= 0 when they
+// overlap or touch. `a`, `b` as for planar_overlap.
+double separation_lower_bound(std::span<const Vec2> a, std::span<const Vec2> b);
+
 // `a`, `b`: world-frame vertices, counter-clockwise, strictly convex, at most kMaxPolygonVertices each.
 // Returns false when the interiors do not overlap; touching (zero overlap area) counts as no contact.
 // `with_gradient`: also fill moment, ga, gb, ha, hb (30-50 ns more per overlapping pair; only the gradient force

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <algorithm>
+#include <limits>
 #include <utility>
 
 #include "dynamics/parallel.h"
@@ -32,16 +33,18 @@ void World::grid_pairs(std::span<const geometry::Aabb> boxes) {
                   pair_chunks_[static_cast<std::size_t>(c)].end());
 }
 
-bool World::skin_outrun() const {
+bool World::skin_outrun() {
   if (skin_pos_.size() != size()) return true;
   const double half = 0.5 * skin_;
+  bool outrun = false;
   for (std::size_t i = 0; i < size(); ++i) {
     // No vertex of body i has moved further than this since the build (a rotation by dθ moves a vertex at r by
     // 2 r sin(dθ/2) <= r |dθ|); NaN counts as too far.
     const double moved = (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
-    if (!(moved <= half)) return true;
+    skin_moved_[static_cast<std::size_t>(skin_slot_[i])] = moved;
+    outrun |= !(moved <= half);
   }
-  return false;
+  return outrun;
 }
 
 namespace {
@@ -74,16 +77,43 @@ void World::build_skin() {
     skin_body_[k] = slots_[k].body;
     skin_slot_[slots_[k].body] = k;
   }
+  // Each listed pair's distance at the build, from below (separating axes; -inf: never skipped): the pair cannot
+  // touch while its two bodies have moved less than that in all, so the filter skips it without the narrow phase.
+  // Less a margin far above the round-off of the coordinates, so that a skipped pair is one planar_overlap would
+  // certainly reject; the comparison method (gjk_epa, with its own tolerance) skips none.
+  skin_gap_.resize(skin_adj_.size());
+  const bool exact = settings_.narrow_phase == PlanarNarrowPhase::exact;
+  POLYFLOE_OMP_FOR(threads_)
+  for (int k = 0; k < n; ++k) {
+    const SlotStatic& A = slot_static_[k];
+    const std::span<const Vec2> va{world_xy_.data() + A.vert_begin, static_cast<std::size_t>(A.vert_count)};
+    for (int e = skin_off_[k]; e < skin_off_[k + 1]; ++e) {
+      const int b = skin_adj_[static_cast<std::size_t>(e)];
+      const SlotStatic& B = slot_static_[b];
+      const geometry::Aabb &ba = boxes_[k], &bb = boxes_[b];
+      const bool finite = ba.lo.allFinite() && ba.hi.allFinite() && bb.lo.allFinite() && bb.hi.allFinite();
+      double gap = -std::numeric_limits<double>::infinity();
+      if (exact && finite) {
+        const double scale = std::max({ba.lo.cwiseAbs().maxCoeff(), ba.hi.cwiseAbs().maxCoeff(),
+                                       bb.lo.cwiseAbs().maxCoeff(), bb.hi.cwiseAbs().maxCoeff()});
+        const std::span<const Vec2> vb{world_xy_.data() + B.vert_begin, static_cast<std::size_t>(B.vert_count)};
+        gap = contact::separation_lower_bound(va, vb) - 1e-9 * (1.0 + scale);
+      }
+      skin_gap_[static_cast<std::size_t>(e)] = gap;
+    }
+  }
   skin_pos_ = pos_;
   skin_yaw_ = yaw_;
+  skin_moved_.assign(static_cast<std::size_t>(n), 0.0);
   ++skin_builds_;
 }
 
 void World::candidate_pairs() {
   // The pairs whose boxes overlap now, found among the neighbour lists of the last build (a superset while no
-  // vertex has moved more than half the skin), as slot pairs (a, b), a < b, sorted by a, then b. The list is a
-  // function of the current boxes and slots alone, whenever the neighbour lists were built: a restarted run and
-  // any number of threads find it in the same order.
+  // vertex has moved more than half the skin), as slot pairs (a, b), a < b, sorted by a, then b; less the pairs
+  // still farther apart than their bodies have moved since the build (they cannot touch). The pairs that touch
+  // are therefore a function of the current state alone, in an order that is one too, whenever the lists were
+  // built: a restarted run and any number of threads sum the same contacts in the same order.
   if (skin_outrun()) build_skin();
   const int n = static_cast<int>(size());
   const int chunks = threads_ == 1 ? 1 : std::min(n, 8 * threads_);
@@ -99,6 +129,7 @@ void World::candidate_pairs() {
       const int i = slots_[k].body;
       const int built = skin_body_[k] == i ? k : skin_slot_[i];  // this body's slot at the build
       const int e0 = skin_off_[built], e1 = skin_off_[built + 1];
+      const double moved = skin_moved_[built];
       out.resize(m + static_cast<std::size_t>(e1 - e0));
       const geometry::Aabb box = boxes_[k];
       // Without branches (whether a listed pair overlaps is a coin toss to the predictor): every pair is written,
@@ -109,7 +140,7 @@ void World::candidate_pairs() {
         const int s = slots_[sb].body == j ? sb : body_slot_[j];  // ... and now
         const geometry::Aabb& o = boxes_[s];
         const bool hit = (box.lo.x() <= o.hi.x()) & (o.lo.x() <= box.hi.x()) & (box.lo.y() <= o.hi.y()) &
-                         (o.lo.y() <= box.hi.y());
+                         (o.lo.y() <= box.hi.y()) & (moved + skin_moved_[sb] >= skin_gap_[e]);
         out[m] = {std::min(k, s), std::max(k, s)};
         m += hit;
       }

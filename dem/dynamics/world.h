@@ -220,7 +220,7 @@ class World {
   // moved half the skin since (skin_outrun()).
   void candidate_pairs();
   void grid_pairs(std::span<const geometry::Aabb> boxes);
-  bool skin_outrun() const;
+  bool skin_outrun();
   void build_skin();
   void drift_forces(double t);
   void bond_forces(double t);
@@ -309,6 +309,8 @@ class World {
   // Neighbour lists by the build's slots (CSR; each pair once, in its lower slot's list), and the build's
   // slot -> body and body -> slot.
   std::vector<int> skin_off_, skin_adj_, skin_body_, skin_slot_;
+  std::vector<double> skin_gap_;    // per listed pair: its distance at the build, from below, less a margin [m]
+  std::vector<double> skin_moved_;  // by the build's slot: how far the body's vertices may have moved since [m]
   std::vector<geometry::Aabb> skin_boxes_;
   std::uint64_t skin_builds_ = 0;
   // scratch
