@@ -174,6 +174,18 @@ void World::candidate_pairs() {
   }
 }
 
+const std::vector<ContactRecord>& World::contacts() const {
+  if (!contacts_ready_) {
+    contacts_.clear();
+    for (const PairResult& r : pair_results_)
+      if (r.hit)
+        contacts_.push_back({slot_static_[r.a].body, slot_static_[r.b].body, r.g, r.cf.normal, r.cf.tangential,
+                             r.cf.sliding, r.f});
+    contacts_ready_ = true;
+  }
+  return contacts_;
+}
+
 void World::contact_forces(double dt) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
@@ -283,8 +295,11 @@ void World::contact_forces(double dt) {
   slot_force_.assign(static_cast<std::size_t>(n), Vec2{0.0, 0.0});
   slot_torque_.assign(static_cast<std::size_t>(n), 0.0);
   contacts_.clear();
+  contacts_ready_ = false;  // the records are listed from pair_results_ when asked for (contacts())
+  contact_count_ = 0;
   worst_q2_ = worst_v2_ = 0.0;
   worst_a_ = worst_b_ = -1;
+  deepest_ = DeepestOverlap{};
   for (const PairResult& r : pair_results_) {
     narrow_phase_failures_ += r.fallback;
     if (!r.hit) continue;
@@ -301,7 +316,12 @@ void World::contact_forces(double dt) {
     slot_torque_[r.b] += r.tau_b;
     slot_force_[r.a] -= r.f;
     slot_torque_[r.a] += r.tau_a;
-    contacts_.push_back({A.body, B.body, r.g, r.cf.normal, r.cf.tangential, r.cf.sliding, r.f});
+    ++contact_count_;
+    // The overlap deepest against half the smaller floe's equivalent radius (the run guard's limit).
+    const double limit = 0.5 * std::min(A.equivalent_radius, B.equivalent_radius);
+    if (r.g.depth > deepest_.ratio * limit) {
+      deepest_ = {r.g.depth / limit, r.g.depth, limit, A.body, B.body};
+    }
   }
   cache_.end_step();
   POLYFLOE_OMP_FOR(threads_)
@@ -313,7 +333,7 @@ void World::contact_forces(double dt) {
   const auto t2 = clock::now();
   profile_.broad += std::chrono::duration<double>(t1 - t0).count();
   profile_.candidates += pairs_.size();
-  profile_.contacts += contacts_.size();
+  profile_.contacts += contact_count_;
   profile_.narrow_and_law += std::chrono::duration<double>(t2 - t1).count();
 }
 

@@ -89,7 +89,7 @@ int World::add_body(const BodyDesc& d) {
 }
 
 World::SlotStatic World::slot_static_of(int i, int vert_begin) const {
-  return {is_dynamic_[i] ? mass_[i] : contact::kInfinite, radius_[i], id_[i], i, vert_begin,
+  return {is_dynamic_[i] ? mass_[i] : contact::kInfinite, radius_[i], equivalent_radius_[i], id_[i], i, vert_begin,
           vert_off_[i + 1] - vert_off_[i]};
 }
 
@@ -307,6 +307,9 @@ void World::restore(const WorldState& s) {
   cache_.restore(s.contact_history);
   bonds_failed_last_ = s.bonds_failed_last;
   contacts_.clear();
+  contacts_ready_ = true;
+  contact_count_ = 0;
+  deepest_ = DeepestOverlap{};
   worst_q2_ = worst_v2_ = 0.0;
   worst_a_ = worst_b_ = -1;
   update_shapes();

@@ -151,7 +151,19 @@ class World {
   int bonds_failed_last() const { return bonds_failed_last_; }
 
   // --- contacts of the last force evaluation ---
-  const std::vector<ContactRecord>& contacts() const { return contacts_; }
+  // Listed from the last evaluation when first asked for after it (not safe to call from several threads at once).
+  const std::vector<ContactRecord>& contacts() const;
+  std::size_t contact_count() const { return contact_count_; }
+  // The contact of the last force evaluation whose depth is the largest fraction of half the smaller equivalent
+  // radius of its two bodies (the run guard stops a run where that fraction exceeds 1); ratio 0 and a = b = -1
+  // when there is no contact.
+  struct DeepestOverlap {
+    double ratio = 0.0;   // depth / limit [-]
+    double depth = 0.0;   // [m]
+    double limit = 0.0;   // 0.5 x min(equivalent radius of a, of b) [m]
+    int a = -1, b = -1;   // body indices
+  };
+  const DeepestOverlap& deepest_overlap() const { return deepest_; }
   const contact::ContactCache& contact_cache() const { return cache_; }
   // Pairs the 2-D GJK-EPA narrow phase failed on (measured by the exact method instead), since the start.
   std::uint64_t narrow_phase_failures() const { return narrow_phase_failures_; }
@@ -278,6 +290,7 @@ class World {
   struct SlotStatic {  // a packed copy of body data the pair loop reads; rewritten where the order changes
     double mass = 0.0;    // [kg], +inf unless dynamic
     double radius = 0.0;  // [m], +inf unless dynamic
+    double equivalent_radius = 0.0;  // sqrt(area / pi), also for walls [m]
     BodyId id = 0;
     int body = 0;         // body index
     int vert_begin = 0;   // into world_xy_
@@ -317,7 +330,10 @@ class World {
   int threads_ = 1;
   std::vector<contact::CandidatePair> pairs_;
   std::vector<std::vector<contact::CandidatePair>> pair_chunks_;  // the broad phase's scan, split between threads
-  std::vector<ContactRecord> contacts_;
+  mutable std::vector<ContactRecord> contacts_;  // listed on demand (contacts())
+  mutable bool contacts_ready_ = true;
+  std::size_t contact_count_ = 0;
+  DeepestOverlap deepest_;
   // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
   struct PairResult {
     bool hit = false;

@@ -1,9 +1,11 @@
 // The run guard (run/simulation.h check_stability), case by case against hand-built states: a non-finite state, a
-// runaway body, runaway energy spread over many bodies (none fast enough for the per-body limit), and the messages
+// runaway body, runaway energy spread over many bodies (none fast enough for the per-body limit), an overlap deeper
+// than half the smaller floe's radius (the World tracks the deepest in its contact sum), and the messages
 // naming the body, the time and the step to try; and a World's state restored into a World built the same way
 // continues bit for bit, while a state for other bodies is refused.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -123,4 +125,30 @@ TEST(WorldState, StateOfOtherBodiesIsRefused) {
   s = a.state();
   s.yaw.pop_back();
   EXPECT_THROW(a.restore(s), std::invalid_argument);
+}
+
+TEST(RunGuard, OverlapDeeperThanHalfTheSmallerRadiusNamesThePair) {
+  // 10 m squares (equivalent radius 5.64 m, so the limit is 2.82 m): one pair overlapping by 1 m, another by
+  // 3.5 m; a tiny step so that the contact-resolution check passes first.
+  dynamics::WorldSettings ws;
+  ws.drift = forcing::DriftSettings::none();
+  dynamics::World w(ws);
+  const auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
+  const double x[] = {0.0, 9.0, 100.0, 106.5};
+  for (int i = 0; i < 4; ++i)
+    w.add_body({.id = static_cast<dynamics::BodyId>(100 + i), .shape = sq, .position = {x[i], 0.0}});
+  w.compute_forces(1e-7);
+  ASSERT_EQ(w.contact_count(), 2u);
+  EXPECT_NEAR(w.deepest_overlap().ratio, 3.5 / (0.5 * std::sqrt(100.0 / M_PI)), 1e-9);
+  const std::string m = guard_message(w, 1e-7, 1.0);
+  EXPECT_NE(m.find("bodies 102 and 103 overlap by 3.5 m"), std::string::npos) << m;
+  // Only the 1 m overlap: quiet.
+  dynamics::World shallow(ws);
+  for (int i = 0; i < 2; ++i)
+    shallow.add_body({.id = static_cast<dynamics::BodyId>(100 + i), .shape = sq, .position = {x[i], 0.0}});
+  shallow.compute_forces(1e-7);
+  ASSERT_EQ(shallow.contact_count(), 1u);
+  EXPECT_EQ(guard_message(shallow, 1e-7, 1.0), "");
+  // The records, listed on demand, agree with the count.
+  EXPECT_EQ(w.contacts().size(), 2u);
 }
