@@ -20,10 +20,11 @@ struct ClipPolygon {
   int n = 0;
 };
 
-// Separating-axis fallback for containment (no boundary crossing): the axis of least penetration.
-void least_penetration(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out) {
+// The largest separation of the two polygons along their edges' outward normals (separating axes), and that axis,
+// pointing from A to B: > 0 is a lower bound of their distance, <= 0 minus the least penetration.
+double max_separation(std::span<const Vec2> a, std::span<const Vec2> b, Vec2& axis) {
   double best = -std::numeric_limits<double>::infinity();
-  Vec2 best_n{1.0, 0.0};
+  axis = Vec2{1.0, 0.0};
   auto scan = [&](std::span<const Vec2> s, std::span<const Vec2> t, double sign) {
     const std::size_t n = s.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -35,14 +36,18 @@ void least_penetration(std::span<const Vec2> a, std::span<const Vec2> b, PlanarC
       for (const Vec2& q : t) sep = std::min(sep, u.dot(q - s[i]));
       if (sep > best) {
         best = sep;
-        best_n = sign * u;
+        axis = sign * u;
       }
     }
   };
   scan(a, b, 1.0);   // A's face normals point from A to B
   scan(b, a, -1.0);  // B's face normals point from B to A
-  out.normal = best_n;
-  out.depth = std::max(0.0, -best);
+  return best;
+}
+
+// Separating-axis fallback for containment (no boundary crossing): the axis of least penetration.
+void least_penetration(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out) {
+  out.depth = std::max(0.0, -max_separation(a, b, out.normal));
 }
 
 }  // namespace
@@ -229,23 +234,8 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
 }
 
 double separation_lower_bound(std::span<const Vec2> a, std::span<const Vec2> b) {
-  double best = -std::numeric_limits<double>::infinity();
-  // s's edges against t's vertices: min over t of the distance beyond the edge's line.
-  auto scan = [&](std::span<const Vec2> s, std::span<const Vec2> t) {
-    const std::size_t n = s.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 e = s[(i + 1 == n) ? 0 : i + 1] - s[i];
-      const double len = e.norm();
-      if (!(len > 0.0)) continue;
-      const Vec2 u = perp_right(e) / len;
-      double sep = std::numeric_limits<double>::infinity();
-      for (const Vec2& q : t) sep = std::min(sep, u.dot(q - s[i]));
-      best = std::max(best, sep);
-    }
-  };
-  scan(a, b);
-  scan(b, a);
-  return best;
+  Vec2 axis;
+  return max_separation(a, b, axis);
 }
 
 DepthGradient depth_gradient(const PlanarContact& g, const Vec2& x_a, const Vec2& x_b) {
