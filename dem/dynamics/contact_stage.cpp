@@ -36,14 +36,16 @@ void World::grid_pairs(std::span<const geometry::Aabb> boxes) {
 bool World::skin_outrun() {
   if (skin_pos_.size() != size()) return true;
   const double half = 0.5 * skin_;
-  bool outrun = false;
-  for (std::size_t i = 0; i < size(); ++i) {
+  const int n = static_cast<int>(size());
+  POLYFLOE_OMP_FOR(threads_)
+  for (int i = 0; i < n; ++i) {
     // No vertex of body i has moved further than this since the build (a rotation by dθ moves a vertex at r by
-    // 2 r sin(dθ/2) <= r |dθ|); NaN counts as too far.
-    const double moved = (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
-    skin_moved_[static_cast<std::size_t>(skin_slot_[i])] = moved;
-    outrun |= !(moved <= half);
+    // 2 r sin(dθ/2) <= r |dθ|).
+    skin_moved_[static_cast<std::size_t>(skin_slot_[i])] =
+        (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
   }
+  bool outrun = false;
+  for (const double moved : skin_moved_) outrun |= !(moved <= half);  // NaN counts as too far
   return outrun;
 }
 
