@@ -77,7 +77,10 @@ if command -v python3 >/dev/null; then
 import json, sys, os
 out = sys.argv[1]
 def rows(name):
-    with open(os.path.join(out, name)) as f:
+    path = os.path.join(out, name)
+    if not os.path.getsize(path):  # a --benchmark_filter that matched nothing in this executable
+        return []
+    with open(path) as f:
         data = json.load(f)
     runs = [b for b in data["benchmarks"] if b.get("run_type") != "aggregate" or b.get("aggregate_name") == "median"]
     runs = [b for b in runs if "error_occurred" not in b]
