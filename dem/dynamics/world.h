@@ -313,8 +313,8 @@ class World {
   std::vector<Vec2> slot_force_;       // contact force and torque of the current evaluation, by slot
   std::vector<double> slot_torque_;
   // The broad phase's neighbour lists ("Verlet lists"): the pairs whose boxes, grown by skin_ / 2 on every side,
-  // overlapped at the last build, as a neighbour list per body; valid while no vertex has moved more than skin_ / 2
-  // since (then every pair whose boxes overlap now is among them).
+  // overlapped at the last build, as neighbour lists of the build's slots; valid while no vertex has moved more than
+  // skin_ / 2 since (then every pair whose boxes overlap now is among them).
   double skin_ = 0.0;                   // [m], WorldSettings::broad_phase_skin or 0.2 x the mean equivalent radius
   std::vector<double> reach_;           // circumradius about the centroid, by body [m]
   std::vector<Vec2> skin_pos_;          // poses at the last build, by body
