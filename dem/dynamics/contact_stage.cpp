@@ -141,10 +141,11 @@ void World::candidate_pairs() {
         const int j = skin_body_[sb];
         const int s = slots_[sb].body == j ? sb : body_slot_[j];  // ... and now
         const geometry::Aabb& o = boxes_[s];
-        const bool hit = (box.lo.x() <= o.hi.x()) & (o.lo.x() <= box.hi.x()) & (box.lo.y() <= o.hi.y()) &
-                         (o.lo.y() <= box.hi.y()) & (moved + skin_moved_[sb] >= skin_gap_[e]);
+        const int hit = static_cast<int>(box.lo.x() <= o.hi.x()) & static_cast<int>(o.lo.x() <= box.hi.x()) &
+                        static_cast<int>(box.lo.y() <= o.hi.y()) & static_cast<int>(o.lo.y() <= box.hi.y()) &
+                        static_cast<int>(moved + skin_moved_[sb] >= skin_gap_[e]);
         out[m] = {std::min(k, s), std::max(k, s)};
-        m += hit;
+        m += static_cast<std::size_t>(hit);
       }
     }
     out.resize(m);
