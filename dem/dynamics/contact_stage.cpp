@@ -10,6 +10,18 @@
 
 namespace polyfloe::dynamics {
 
+// pairs_ = the first `chunks` lists of pair_chunks_, in order (one list is taken over whole).
+void World::join_pair_chunks(int chunks) {
+  if (chunks == 1) {
+    pairs_.swap(pair_chunks_[0]);
+    return;
+  }
+  pairs_.clear();
+  for (int c = 0; c < chunks; ++c)
+    pairs_.insert(pairs_.end(), pair_chunks_[static_cast<std::size_t>(c)].begin(),
+                  pair_chunks_[static_cast<std::size_t>(c)].end());
+}
+
 // The grid's pairs of `boxes` (by slot) into pairs_: on one thread, or its scan split into consecutive tile
 // ranges, scanned in parallel and concatenated in order (the same list as the serial scan).
 void World::grid_pairs(std::span<const geometry::Aabb> boxes) {
@@ -27,10 +39,7 @@ void World::grid_pairs(std::span<const geometry::Aabb> boxes) {
     out.clear();
     broad_.scan_tiles(tiles * c / chunks, tiles * (c + 1) / chunks, out);
   }
-  pairs_.clear();
-  for (int c = 0; c < chunks; ++c)
-    pairs_.insert(pairs_.end(), pair_chunks_[static_cast<std::size_t>(c)].begin(),
-                  pair_chunks_[static_cast<std::size_t>(c)].end());
+  join_pair_chunks(chunks);
 }
 
 bool World::skin_outrun() {
@@ -150,14 +159,7 @@ void World::candidate_pairs() {
     }
     out.resize(m);
   }
-  if (chunks == 1) {
-    pairs_.swap(pair_chunks_[0]);
-  } else {
-    pairs_.clear();
-    for (int c = 0; c < chunks; ++c)
-      pairs_.insert(pairs_.end(), pair_chunks_[static_cast<std::size_t>(c)].begin(),
-                    pair_chunks_[static_cast<std::size_t>(c)].end());
-  }
+  join_pair_chunks(chunks);
   // Sorted as built; slots that swapped since move a few pairs out of order: an insertion sort puts them back,
   // and past a budget of moves (bodies that crossed many others, or the slots sorted anew since the build) a full
   // sort, and the lists are rebuilt next time. Both give the one sorted order.

@@ -232,6 +232,7 @@ class World {
   // moved half the skin since (skin_outrun()).
   void candidate_pairs();
   void grid_pairs(std::span<const geometry::Aabb> boxes);
+  void join_pair_chunks(int chunks);
   bool skin_outrun();
   void build_skin();
   void drift_forces(double t);
