@@ -9,6 +9,7 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include "scratch_dir.h"
 #include "pvd.h"
 
 #include <cstdlib>
@@ -37,7 +38,7 @@ std::vector<std::uint64_t> read_u64(hid_t file, const char* name) {
 }  // namespace
 
 TEST(ChannelScene, RunsAndEveryFrameHoldsAllFloes) {
-  const fs::path out = fs::temp_directory_path() / "polyfloe_channel_test";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_channel_test");
   fs::remove_all(out);
   const std::string cmd = std::string(POLYFLOE_BINARY) + " run " + POLYFLOE_SOURCE_DIR +
                           "/dem/scenes/channel.yaml -o " + out.string() + " > " + (out.string() + ".log") + " 2>&1";

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <string>
 
+#include "scratch_dir.h"
 #include "cli_support.h"
 
 namespace fs = std::filesystem;
@@ -20,7 +21,16 @@ using Result = polyfloe::tsupport::CommandResult;
 using polyfloe::tsupport::run_polyfloe;
 
 fs::path write_scene(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / name;
+  // One folder per test process, removed when the process ends.
+  static const struct SceneDir {
+    fs::path path = polyfloe::tsupport::scratch_dir("polyfloe_cli_scenes");
+    SceneDir() { fs::create_directories(path); }
+    ~SceneDir() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  } dir;
+  const fs::path p = dir.path / name;
   std::ofstream(p) << text;
   return p;
 }
@@ -58,7 +68,7 @@ TEST(Cli, BadSceneNamesLineAndKeyAndWritesNothing) {
   const fs::path scene = write_scene("polyfloe_bad_scene.yaml",
                                      "run:\n  duration: 10\ncontact:\n  restitution: 1.5\nfloes:\n"
                                      "  - regular: {sides: 6, radius: 5}\n");
-  const fs::path out = fs::temp_directory_path() / "polyfloe_bad_scene_out";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_bad_scene_out");
   fs::remove_all(out);
   const Result r = run_polyfloe("run " + scene.string() + " -o " + out.string());
   EXPECT_EQ(r.code, 2) << r.output;
@@ -78,7 +88,7 @@ TEST(Cli, BadSceneNamesLineAndKeyAndWritesNothing) {
 }
 
 TEST(Cli, RunWritesOutputs) {
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_run";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_run");
   fs::remove_all(out);
   const Result r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=1.5");
   EXPECT_EQ(r.code, 0) << r.output;
@@ -90,7 +100,7 @@ TEST(Cli, RunWritesOutputs) {
 // A spatial scene runs through its own driver: the cube-plate impact, its outputs, and Eq. 6-7 at the end (the
 // cube is clear of the plate after 0.1 s; tolerance 1 % of v0 as tests/validation/test_cube_plate.cpp).
 TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_cube_plate";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_cube_plate");
   fs::remove_all(out);
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/cube_plate.yaml";
   const Result r = run_polyfloe("run " + scene + " -o " + out.string());
@@ -112,7 +122,7 @@ TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
 }
 
 TEST(Cli, SpatialUnresolvedContactStopsWithExitThree) {
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_cube_plate_unstable";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_cube_plate_unstable");
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/cube_plate.yaml";
   const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set run.dt=0.005");
   EXPECT_EQ(r.code, 3) << r.output;
@@ -124,7 +134,7 @@ TEST(Cli, SpatialUnresolvedContactStopsWithExitThree) {
 TEST(Cli, UnresolvedContactStopsWithExitThree) {
   // A 0.05 s step cannot resolve a ~0.03 s Hertz impact: the guard must stop the run, name the bodies and say
   // what to change, instead of letting the floes fly apart at ten times their impact speed.
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_unstable";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_unstable");
   const Result r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.dt=0.05");
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("bodies 0 and 1"), std::string::npos) << r.output;
@@ -143,7 +153,7 @@ TEST(Cli, KinematicBodiesDoNotTripTheSpeedGuard) {
                                      "  - rectangle: {width: 200, height: 2}\n"
                                      "    motion: kinematic\n"
                                      "    angular_velocity: 0.6\n");
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_kinematic";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_kinematic");
   const Result r = run_polyfloe("run " + scene.string() + " -o " + out.string());
   EXPECT_EQ(r.code, 0) << r.output;
   fs::remove_all(out);
@@ -152,7 +162,7 @@ TEST(Cli, KinematicBodiesDoNotTripTheSpeedGuard) {
 TEST(Cli, OverflowingDragStopsWithExitThree) {
   // dt = 100 s makes the explicit quadratic drag overshoot and grow without bound within a few steps (the default
   // semi-implicit treatment is stable there: tests/validation/test_drift.cpp).
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_overflow";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_overflow");
   const Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
                             " --set run.dt=100 --set run.duration=3000 --set forcing.ocean.skin_drag.enabled=true"
                             " --set forcing.treatment=explicit"
@@ -162,7 +172,7 @@ TEST(Cli, OverflowingDragStopsWithExitThree) {
 }
 
 TEST(Cli, TinyOutputIntervalFinishes) {
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_tiny_interval";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_tiny_interval");
   const Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
                             " --set output.interval=1e-300 --set run.duration=0.01");
   EXPECT_EQ(r.code, 0) << r.output;
@@ -170,7 +180,7 @@ TEST(Cli, TinyOutputIntervalFinishes) {
 }
 
 TEST(Cli, RunKeepsUnrelatedFilesInTheOutputFolder) {
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_keep";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_keep");
   fs::remove_all(out);
   fs::create_directories(out / "floes");
   std::ofstream(out / "floes" / "notes.txt") << "mine";
@@ -185,7 +195,7 @@ TEST(Cli, RunKeepsUnrelatedFilesInTheOutputFolder) {
 TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
   // Two days of tidal drift with wind and Coriolis at 30 s steps (semi-implicit drag and Coriolis).
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/drift_tidal.yaml";
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_tidal";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_tidal");
   Result r = run_polyfloe("run " + scene + " -o " + out.string());
   EXPECT_EQ(r.code, 0) << r.output;
   std::ifstream resolved(out / "scene.resolved.yaml");
@@ -204,7 +214,7 @@ TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
 
 TEST(Cli, VortexSceneRuns) {
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/drift_vortex.yaml";
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_vortex";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_vortex");
   const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set run.duration=0.5 --set output.interval=0.25");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "floes.pvd"));
@@ -213,7 +223,7 @@ TEST(Cli, VortexSceneRuns) {
 
 TEST(Sweep, ScriptRunsFamiliesPerSeedAndThePlotsFollow) {
   // scripts/sweep.sh on two families and two seeds with a tiny duration, then postprocess/plot_sweep.py on its output.
-  const fs::path out = fs::temp_directory_path() / "polyfloe_sweep";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_sweep");
   fs::remove_all(out);
   const std::string src = POLYFLOE_SOURCE_DIR;
   const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src + "/scripts/sweep.sh -j 2 -s 1,2 -o " +
@@ -227,8 +237,13 @@ TEST(Sweep, ScriptRunsFamiliesPerSeedAndThePlotsFollow) {
   EXPECT_TRUE(fs::is_symlink(out / "exponent" / "a2.0" / "s2"));
   EXPECT_FALSE(fs::is_symlink(out / "concentration" / "c0.50" / "s2"));
   const std::string plot = "/usr/bin/python3 " + src + "/postprocess/plot_sweep.py " + out.string() + " -o " +
-                           (out / "fig").string() + " --summary " + (out / "summary.json").string() + " > /dev/null 2>&1";
-  EXPECT_EQ(std::system(plot.c_str()), 0);
+                           (out / "fig").string() + " --summary " + (out / "summary.json").string() + " > " +
+                           (out / "plot.log").string() + " 2>&1";
+  if (std::system(plot.c_str()) != 0) {
+    std::ifstream log(out / "plot.log");
+    ADD_FAILURE() << "plot_sweep.py failed:\n"
+                  << std::string((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  }
   EXPECT_TRUE(fs::exists(out / "fig" / "sweep_flow.png"));
   EXPECT_TRUE(fs::exists(out / "fig" / "sweep_maps_exponent.png"));
   std::ifstream summary(out / "summary.json");
@@ -243,7 +258,7 @@ TEST(Sweep, ScriptRunsFamiliesPerSeedAndThePlotsFollow) {
 TEST(Cli, VelocityGridTooLargeIsRefusedBeforeAnyOutput) {
   // The automatic grid spans every body: 1 m cells over the channel's 2.2 km x 1.1 km are too many.
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/channel.yaml";
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_grid";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_grid");
   fs::remove_all(out);
   const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set output.velocity_grid.cell=0.5");
   EXPECT_EQ(r.code, 2) << r.output;
@@ -261,7 +276,7 @@ TEST(Cli, VelocityGridTooLargeIsRefusedBeforeAnyOutput) {
 
 TEST(Cli, ChannelGeometryFigureFromARun) {
   const std::string src = POLYFLOE_SOURCE_DIR;
-  const fs::path out = fs::temp_directory_path() / "polyfloe_cli_geometry";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_geometry");
   fs::remove_all(out);
   const Result r = run_polyfloe("run " + src + "/dem/scenes/channel.yaml -o " + out.string() +
                             " --set run.duration=0.001 --set output.vtk=false");
@@ -284,7 +299,7 @@ TEST(Uniaxial, StudyScriptRunsAndThePlotsFollow) {
   // The compression study on a short run (0.05 s: the plates have barely started): every strength runs, the
   // outputs have the bonds and the plate forces, and the figures are drawn.
   const std::string src = POLYFLOE_SOURCE_DIR;
-  const fs::path out = fs::temp_directory_path() / "polyfloe_uniaxial";
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_uniaxial");
   fs::remove_all(out);
   const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src +
                           "/scripts/uniaxial_study.sh -j 2 -o " + out.string() + " -f " + (out / "fig").string() +

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "scratch_dir.h"
 #include "forcing/gridded_field.h"
 #include "io/field_file.h"
 #include "io/hdf5_file.h"
@@ -24,8 +25,8 @@ using forcing::GridData;
 class FieldFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("polyfloe_field_file_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = polyfloe::tsupport::scratch_dir("polyfloe_field_file_" +
+                                           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

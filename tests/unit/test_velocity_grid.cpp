@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <random>
 
+#include "scratch_dir.h"
 #include "dynamics/world.h"
 #include "io/hdf5_file.h"
 #include "io/hdf5_writer.h"
@@ -167,7 +168,7 @@ TEST(VelocityGrid, RejectsBadGeometry) {
 
 TEST(VelocityGridRecorder, WritesHdf5AndImageSeries) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "polyfloe_test_velocity_grid";
+  const fs::path dir = polyfloe::tsupport::scratch_dir("polyfloe_test_velocity_grid");
   fs::remove_all(dir);
   dynamics::World w = empty_world();
   w.add_body({.id = 1, .shape = tsupport::shape_of({{-5, -5}, {5, -5}, {5, 5}, {-5, 5}}), .position = {10.0, 5.0},
