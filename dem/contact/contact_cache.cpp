@@ -38,8 +38,9 @@ void ContactCache::rebuild_index() {
 }
 
 void ContactCache::end_step() {
+  cur_.resize(cur_count_);  // shrinks: no writes
   prev_.swap(cur_);
-  cur_.clear();
+  cur_count_ = 0;
   rebuild_index();
 }
 
@@ -54,6 +55,7 @@ std::vector<std::pair<PairKey, double>> ContactCache::entries() const {
 void ContactCache::restore(const std::vector<std::pair<PairKey, double>>& entries) {
   prev_ = entries;
   cur_.clear();
+  cur_count_ = 0;
   rebuild_index();
 }
 

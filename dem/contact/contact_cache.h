@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace polyfloe::contact {
@@ -30,7 +31,18 @@ class ContactCache {
   // the same order every step, so a loop that passes one hint along reads the store in order, without hashing.
   double previous(const PairKey& k, std::size_t& hint) const;
   // Record this step's value; the pair survives into the next step. Each pair is stored at most once a step.
-  void store(const PairKey& k, double spring) { cur_.emplace_back(k, spring); }
+  void store(const PairKey& k, double spring) {
+    if (cur_count_ < cur_.size()) cur_[cur_count_] = {k, spring};
+    else cur_.emplace_back(k, spring);
+    ++cur_count_;
+  }
+  // Or, for a parallel loop: room for this step's `count` stores, each then written at its own place (the order of
+  // the places is the order of the stores). Replaces whatever was stored this step; the room is not cleared.
+  std::span<std::pair<PairKey, double>> store_slots(std::size_t count) {
+    if (cur_.size() < count) cur_.resize(count);
+    cur_count_ = count;
+    return {cur_.data(), count};
+  }
   // Called once per step after all stores: this step's entries become the previous ones.
   void end_step();
   std::size_t size() const { return prev_.size(); }
@@ -42,7 +54,10 @@ class ContactCache {
   void rebuild_index();
   // This step's stores, appended in order (no hashing on the hot path), and last step's entries with an
   // open-addressing index (linear probing, power-of-two size, at most half full). No allocation once warm.
+  // cur_ keeps the storage of the step before last as room (no clearing, no allocation): its first cur_count_
+  // entries are this step's.
   std::vector<std::pair<PairKey, double>> cur_, prev_;
+  std::size_t cur_count_ = 0;
   std::vector<std::int32_t> index_;  // position in prev_, -1 = empty
 };
 

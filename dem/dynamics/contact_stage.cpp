@@ -179,6 +179,117 @@ void World::candidate_pairs() {
   }
 }
 
+void World::sum_contacts(int n) {
+  // The contact forces summed per slot in pair order, as one loop over the pairs would, but in parallel: the slots
+  // are cut into consecutive blocks, and the pairs, sorted by their lower slot, into the blocks of that slot. A
+  // slot's contributions from pairs of earlier blocks come before those of its own block's pairs in pair order, so
+  // each block first collects the pairs whose upper slot lies in a later block (pass 1), then sums its slots: the
+  // pairs collected by earlier blocks, block by block, then its own (pass 2). Every slot sees the same additions
+  // in the same order as the serial loop, whatever the blocks: the sums, the stored springs, the counts and the
+  // extremes do not depend on the threads.
+  const int blocks = threads_ == 1 ? 1 : std::min(n, 8 * threads_);
+  sum_blocks_.resize(static_cast<std::size_t>(std::max(blocks, 1)));
+  auto first_slot = [&](int c) { return static_cast<int>(static_cast<long long>(n) * c / blocks); };
+  for (int c = 0; c < blocks; ++c) {
+    const int lo = first_slot(c);
+    sum_blocks_[c].first_pair = static_cast<std::size_t>(
+        std::lower_bound(pairs_.begin(), pairs_.end(), lo,
+                         [](const contact::CandidatePair& p, int slot) { return p.a < slot; }) -
+        pairs_.begin());
+  }
+  auto last_pair = [&](int c) { return c + 1 < blocks ? sum_blocks_[c + 1].first_pair : pairs_.size(); };
+  POLYFLOE_OMP_FOR_DYNAMIC(threads_)
+  for (int c = 0; c < blocks; ++c) {
+    SumBlock& blk = sum_blocks_[c];
+    blk.spilled.clear();
+    blk.hits = 0;
+    const int hi = first_slot(c + 1);
+    for (std::size_t p = blk.first_pair, p1 = last_pair(c); p < p1; ++p) {
+      if (!pair_hit_[p]) continue;
+      ++blk.hits;
+      if (pairs_[p].b >= hi) blk.spilled.push_back(p);
+    }
+  }
+  std::size_t hits = 0;
+  for (SumBlock& blk : sum_blocks_) {
+    blk.first_store = hits;
+    hits += blk.hits;
+  }
+  const std::span<std::pair<contact::PairKey, double>> stores = cache_.store_slots(hits);
+  slot_force_.resize(static_cast<std::size_t>(n));
+  slot_torque_.resize(static_cast<std::size_t>(n));
+  POLYFLOE_OMP_FOR_DYNAMIC(threads_)
+  for (int c = 0; c < blocks; ++c) {
+    SumBlock& blk = sum_blocks_[c];
+    const int lo = first_slot(c), hi = first_slot(c + 1);
+    for (int k = lo; k < hi; ++k) {
+      slot_force_[k] = Vec2{0.0, 0.0};
+      slot_torque_[k] = 0.0;
+    }
+    // A pair's share to one of its slots (a gets minus the force on b).
+    auto add = [&](const PairResult& r, int slot) {
+      if (slot == r.b) {
+        slot_force_[slot] += r.f;
+        slot_torque_[slot] += r.tau_b;
+      } else {
+        slot_force_[slot] -= r.f;
+        slot_torque_[slot] += r.tau_a;
+      }
+    };
+    for (int e = 0; e < c; ++e)
+      for (const std::size_t p : sum_blocks_[e].spilled)
+        if (const int b = pairs_[p].b; b >= lo && b < hi) add(pair_results_[p], b);
+    blk.failures = 0;
+    blk.worst_q2 = blk.worst_v2 = 0.0;
+    blk.worst_a = blk.worst_b = -1;
+    blk.deepest = DeepestOverlap{};
+    std::size_t store = blk.first_store;
+    for (std::size_t p = blk.first_pair, p1 = last_pair(c); p < p1; ++p) {
+      const PairResult& r = pair_results_[p];
+      blk.failures += r.fallback;
+      if (!r.hit) continue;
+      const SlotStatic& A = slot_static_[r.a];
+      const SlotStatic& B = slot_static_[r.b];
+      if (r.q2 > blk.worst_q2) {
+        blk.worst_q2 = r.q2;
+        blk.worst_v2 = r.v2;
+        blk.worst_a = A.body;
+        blk.worst_b = B.body;
+      }
+      stores[store++] = {contact::PairKey{A.id, B.id}, r.cf.spring};
+      add(r, pairs_[p].a);
+      if (pairs_[p].b < hi) add(r, pairs_[p].b);
+      // The overlap deepest against half the smaller floe's equivalent radius (the run guard's limit).
+      const double limit = 0.5 * std::min(A.equivalent_radius, B.equivalent_radius);
+      if (const double ratio = r.g.depth / limit; ratio > blk.deepest.ratio)
+        blk.deepest = {ratio, r.g.depth, limit, A.body, B.body};
+    }
+    for (int k = lo; k < hi; ++k) {
+      const int i = slots_[k].body;
+      force_[i] += slot_force_[k];
+      torque_[i] += slot_torque_[k];
+    }
+  }
+  // The counts and extremes, block by block in order (the first of equals wins, as in one loop).
+  contacts_.clear();
+  contacts_ready_ = false;  // the records are listed from pair_results_ when asked for (contacts())
+  contact_count_ = hits;
+  worst_q2_ = worst_v2_ = 0.0;
+  worst_a_ = worst_b_ = -1;
+  deepest_ = DeepestOverlap{};
+  for (const SumBlock& blk : sum_blocks_) {
+    narrow_phase_failures_ += blk.failures;
+    if (blk.worst_q2 > worst_q2_) {
+      worst_q2_ = blk.worst_q2;
+      worst_v2_ = blk.worst_v2;
+      worst_a_ = blk.worst_a;
+      worst_b_ = blk.worst_b;
+    }
+    if (blk.deepest.ratio > deepest_.ratio) deepest_ = blk.deepest;
+  }
+  cache_.end_step();
+}
+
 const std::vector<ContactRecord>& World::contacts() const {
   if (!contacts_ready_) {
     contacts_.clear();
@@ -211,6 +322,7 @@ void World::contact_forces(double dt) {
   // phase's order on one thread, so the sums, the stored springs and the contact list do not depend on the threads.
   const std::size_t np = pairs_.size();
   pair_results_.resize(np);
+  pair_hit_.resize(np);
   const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
   const bool gjk = settings_.narrow_phase == PlanarNarrowPhase::gjk_epa;
   const int np_int = static_cast<int>(np);
@@ -219,6 +331,7 @@ void World::contact_forces(double dt) {
   for (int p = 0; p < np_int; ++p) {
     PairResult& r = pair_results_[static_cast<std::size_t>(p)];
     r.hit = false;
+    pair_hit_[static_cast<std::size_t>(p)] = 0;
     r.fallback = false;
     // Orient every pair by id so the stored spring has one meaning whatever the index order.
     int a = pairs_[p].a, b = pairs_[p].b;
@@ -294,47 +407,10 @@ void World::contact_forces(double dt) {
     r.a = a;
     r.b = b;
     r.hit = true;
+    pair_hit_[static_cast<std::size_t>(p)] = 1;
   }
 
-  // The contact forces summed per slot in pair order, then added to each body's force.
-  slot_force_.assign(static_cast<std::size_t>(n), Vec2{0.0, 0.0});
-  slot_torque_.assign(static_cast<std::size_t>(n), 0.0);
-  contacts_.clear();
-  contacts_ready_ = false;  // the records are listed from pair_results_ when asked for (contacts())
-  contact_count_ = 0;
-  worst_q2_ = worst_v2_ = 0.0;
-  worst_a_ = worst_b_ = -1;
-  deepest_ = DeepestOverlap{};
-  for (const PairResult& r : pair_results_) {
-    narrow_phase_failures_ += r.fallback;
-    if (!r.hit) continue;
-    const SlotStatic& A = slot_static_[r.a];
-    const SlotStatic& B = slot_static_[r.b];
-    if (r.q2 > worst_q2_) {
-      worst_q2_ = r.q2;
-      worst_v2_ = r.v2;
-      worst_a_ = A.body;
-      worst_b_ = B.body;
-    }
-    cache_.store(contact::PairKey{A.id, B.id}, r.cf.spring);
-    slot_force_[r.b] += r.f;
-    slot_torque_[r.b] += r.tau_b;
-    slot_force_[r.a] -= r.f;
-    slot_torque_[r.a] += r.tau_a;
-    ++contact_count_;
-    // The overlap deepest against half the smaller floe's equivalent radius (the run guard's limit).
-    const double limit = 0.5 * std::min(A.equivalent_radius, B.equivalent_radius);
-    if (r.g.depth > deepest_.ratio * limit) {
-      deepest_ = {r.g.depth / limit, r.g.depth, limit, A.body, B.body};
-    }
-  }
-  cache_.end_step();
-  POLYFLOE_OMP_FOR(threads_)
-  for (int k = 0; k < n; ++k) {
-    const int i = slots_[k].body;
-    force_[i] += slot_force_[k];
-    torque_[i] += slot_torque_[k];
-  }
+  sum_contacts(n);
   const auto t2 = clock::now();
   profile_.broad += std::chrono::duration<double>(t1 - t0).count();
   profile_.candidates += pairs_.size();

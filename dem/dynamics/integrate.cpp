@@ -8,10 +8,11 @@
 
 namespace polyfloe::dynamics {
 
-// Where drag and Coriolis are treated semi-implicitly (bodies whose drift load has a damping matrix), drag enters
-// only the final kick (kick_implicit), over the whole step; the first half kick applies the other forces and
-// Coriolis at the start-of-step velocity.
-void World::kick(double h) {
+// The first half kick and the drift, in one pass over the bodies. Where drag and Coriolis are treated
+// semi-implicitly (bodies whose drift load has a damping matrix), drag enters only the final kick (kick_implicit),
+// over the whole step; the first half kick applies the other forces and Coriolis at the start-of-step velocity.
+void World::kick_and_drift(double dt) {
+  const double h = 0.5 * dt;
   const int n = static_cast<int>(size());
   POLYFLOE_OMP_FOR(threads_)
   for (int ii = 0; ii < n; ++ii) {
@@ -26,6 +27,9 @@ void World::kick(double h) {
     }
     vel_[i] += (h * inv_mass_[i]) * f;
     omega_[i] += h * inv_inertia_[i] * t;
+    if (motion_[i] == Motion::fixed) continue;
+    pos_[i] += dt * vel_[i];
+    yaw_[i] += dt * omega_[i];
   }
 }
 
@@ -85,17 +89,6 @@ void World::kick_implicit(double dt) {
     d.torque = lin_torque_[i] - dv.z();
     force_[i] = f_other + d.force;
     torque_[i] = t_other + d.torque;
-  }
-}
-
-void World::drift(double dt) {
-  const int n = static_cast<int>(size());
-  POLYFLOE_OMP_FOR(threads_)
-  for (int ii = 0; ii < n; ++ii) {
-    const std::size_t i = static_cast<std::size_t>(ii);
-    if (motion_[i] == Motion::fixed) continue;
-    pos_[i] += dt * vel_[i];
-    yaw_[i] += dt * omega_[i];
   }
 }
 

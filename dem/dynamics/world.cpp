@@ -1,5 +1,7 @@
 #include "dynamics/world.h"
 
+#include "dynamics/parallel.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -115,8 +117,7 @@ void World::step(double dt) {
   using clock = std::chrono::steady_clock;
   if (!forces_ready_) compute_forces(0.0);
   auto t0 = clock::now();
-  kick(0.5 * dt);
-  drift(dt);
+  kick_and_drift(dt);
   auto t1 = clock::now();
   update_shapes();
   auto t2 = clock::now();
@@ -144,17 +145,18 @@ void World::compute_forces(double dt) {
   vel_eval_.resize(n);
   omega_eval_.resize(n);
   const double h = 0.5 * dt;
-  for (std::size_t i = 0; i < n; ++i) {
+  const int n_int = static_cast<int>(n);
+  POLYFLOE_OMP_FOR(threads_)
+  for (int ii = 0; ii < n_int; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     if (h > 0.0 && i < lin_force_.size() && drift_load_[i].has_damping()) {
       const Vec3 v = implicit_velocity(i, dt);
       vel_eval_[i] = v.u;
       omega_eval_[i] = v.w;
-      continue;
+    } else {
+      vel_eval_[i] = vel_[i] + (h * inv_mass_[i]) * force_[i];
+      omega_eval_[i] = omega_[i] + h * inv_inertia_[i] * torque_[i];
     }
-    vel_eval_[i] = vel_[i] + (h * inv_mass_[i]) * force_[i];
-    omega_eval_[i] = omega_[i] + h * inv_inertia_[i] * torque_[i];
-  }
-  for (std::size_t i = 0; i < size(); ++i) {
     force_[i] = ext_force_[i];
     torque_[i] = ext_torque_[i];
   }
@@ -167,7 +169,9 @@ void World::compute_forces(double dt) {
   // The linear model of the drift load in the body's velocity, F_d(v) = b - D v with b = F_d(v*) + D v*.
   lin_force_.resize(n, Vec2{0.0, 0.0});  // bodies without drift damping keep 0 (never read)
   lin_torque_.resize(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
+  POLYFLOE_OMP_FOR(threads_)
+  for (int ii = 0; ii < n_int; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     const forcing::DriftLoad& d = drift_load_[i];
     if (!d.has_damping()) continue;
     const Vec2& vs = vel_eval_[i];

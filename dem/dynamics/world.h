@@ -206,7 +206,7 @@ class World {
   void compute_forces(double dt);
 
  private:
-  void kick(double half_dt);
+  void kick_and_drift(double dt);  // the first half kick, then the positions over the whole step
   void kick_implicit(double dt);
   struct Vec3 {
     Vec2 u;
@@ -218,7 +218,6 @@ class World {
                                  double p_w);
   // Body i's velocity after the final kick of a step of dt, from its half-kicked velocity (see integrate.cpp).
   Vec3 implicit_velocity(std::size_t i, double dt) const;
-  void drift(double dt);
   void update_shapes();
   void update_shape(int i);
   // Re-sorts the contact stage's slots (below) by the bodies' current positions and lays out the moved ones anew.
@@ -227,6 +226,8 @@ class World {
   struct SlotStatic;
   SlotStatic slot_static_of(int i, int vert_begin) const;
   void contact_forces(double dt);
+  // Adds the evaluated pairs' forces to the n bodies, stores their springs and notes the counts and extremes.
+  void sum_contacts(int n);
   // The broad phase (contact_stage.cpp): candidate_pairs() fills pairs_ with the slot pairs whose boxes overlap,
   // from neighbour lists that build_skin() rebuilds (grid_pairs() on the boxes grown by the skin) once a body has
   // moved half the skin since (skin_outrun()).
@@ -347,6 +348,19 @@ class World {
     double v2 = 0.0, q2 = 0.0;
   };
   std::vector<PairResult> pair_results_;
+  std::vector<std::uint8_t> pair_hit_;  // pair_results_[p].hit, packed: what the sum's first pass reads
+  // The parallel sum of pair_results_ (World::sum_contacts): per block of consecutive slots, its pairs (those whose
+  // lower slot is in the block, from first_pair on), the ones of them whose upper slot lies in a later block, and
+  // the block's share of the counts and extremes.
+  struct SumBlock {
+    std::size_t first_pair = 0, first_store = 0, hits = 0;
+    std::vector<std::size_t> spilled;
+    std::uint64_t failures = 0;
+    double worst_q2 = 0.0, worst_v2 = 0.0;
+    int worst_a = -1, worst_b = -1;
+    DeepestOverlap deepest;
+  };
+  std::vector<SumBlock> sum_blocks_;
   // Each thread's place in the contact history (ContactCache::previous with a hint), a cache line apart.
   struct alignas(64) CacheHint {
     std::size_t at = 0;

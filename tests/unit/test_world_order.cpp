@@ -9,6 +9,8 @@
 //   - The broad phase's neighbour lists: the same jostling pack with a skin so thin that the lists are rebuilt
 //     nearly every step, the automatic skin, and one wider than the floes (built once) gives bitwise the same
 //     positions and velocities and exactly the contacts a brute-force narrow phase finds, at every step checked.
+//   - The thread count: the same jostling pack on 1, 2, 3 and 7 threads gives bitwise the same forces, torques,
+//     states, contact counts, stored springs, shortest active contact and deepest overlap at every step.
 //   - A body whose state becomes non-finite sorts last, has no contact, and leaves the others' shapes and contacts
 //     intact (the broad phase used to hang on a NaN box).
 #include <gtest/gtest.h>
@@ -181,4 +183,44 @@ TEST(WorldOrder, TheNeighbourListSkinChangesHowOftenTheListsAreBuiltAndNothingEl
   EXPECT_LE(wide, 3u);
   EXPECT_LT(automatic, thin);
   EXPECT_GE(automatic, wide);
+}
+
+TEST(WorldOrder, TheThreadCountChangesNothing) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP: the step is serial";
+#endif
+  // The contact sum runs in blocks of slots, 8 per thread, each adding the pairs of earlier blocks that reach into
+  // it before its own: with 1, 2, 3 and 7 threads (8 to 56 blocks of 300 floes, so most slots get pairs from
+  // several earlier blocks) every force, torque, state, count and extreme must be the same bits.
+  tsupport::PackSpec ps;
+  ps.speed = 0.3;  // [m/s]
+  const tsupport::Pack pack = tsupport::make_pack(300, ps, 9u);
+  std::vector<std::unique_ptr<dynamics::World>> worlds;
+  for (const int threads : {1, 2, 3, 7}) {
+    worlds.push_back(std::make_unique<dynamics::World>(tsupport::no_drift()));
+    worlds.back()->set_threads(threads);
+    for (const auto& d : pack.bodies) worlds.back()->add_body(d);
+  }
+  const double dt = worlds[0]->shortest_contact_duration(1.0) / 40.0;
+  for (int step = 1; step <= 100; ++step) {
+    for (auto& w : worlds) w->step(dt);
+    const dynamics::World& one = *worlds[0];
+    ASSERT_GT(one.contact_count(), 100u);
+    for (std::size_t k = 1; k < worlds.size(); ++k) {
+      const dynamics::World& w = *worlds[k];
+      ASSERT_EQ(w.contact_count(), one.contact_count()) << "threads " << w.threads() << ", step " << step;
+      ASSERT_EQ(w.shortest_active_contact().duration, one.shortest_active_contact().duration)
+          << "threads " << w.threads();
+      ASSERT_EQ(w.shortest_active_contact().a, one.shortest_active_contact().a) << "threads " << w.threads();
+      ASSERT_EQ(w.deepest_overlap().ratio, one.deepest_overlap().ratio) << "threads " << w.threads();
+      ASSERT_EQ(w.deepest_overlap().a, one.deepest_overlap().a) << "threads " << w.threads();
+      ASSERT_EQ(w.contact_cache().entries(), one.contact_cache().entries()) << "threads " << w.threads();
+      for (int i = 0; i < static_cast<int>(w.size()); ++i) {
+        ASSERT_EQ(w.forces()[i], one.forces()[i]) << "threads " << w.threads() << ", body " << i << ", step " << step;
+        ASSERT_EQ(w.torques()[i], one.torques()[i]) << "threads " << w.threads() << ", body " << i;
+        ASSERT_EQ(w.positions()[i], one.positions()[i]) << "threads " << w.threads() << ", body " << i;
+        ASSERT_EQ(w.angular_velocities()[i], one.angular_velocities()[i]) << "threads " << w.threads();
+      }
+    }
+  }
 }
