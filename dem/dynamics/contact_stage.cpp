@@ -188,7 +188,7 @@ void World::sum_contacts(int n) {
   // in the same order as the serial loop, whatever the blocks: the sums, the stored springs, the counts and the
   // extremes do not depend on the threads.
   const int blocks = threads_ == 1 ? 1 : std::min(n, 8 * threads_);
-  sum_blocks_.resize(static_cast<std::size_t>(std::max(blocks, 1)));
+  sum_blocks_.resize(static_cast<std::size_t>(blocks));  // none without bodies (on several threads)
   auto first_slot = [&](int c) { return static_cast<int>(static_cast<long long>(n) * c / blocks); };
   for (int c = 0; c < blocks; ++c) {
     const int lo = first_slot(c);

@@ -224,3 +224,14 @@ TEST(WorldOrder, TheThreadCountChangesNothing) {
     }
   }
 }
+
+TEST(WorldOrder, AWorldWithoutBodiesStepsOnSeveralThreads) {
+  // No slots, so no blocks for the contact sum: nothing is summed, and nothing left from an earlier step is counted.
+  dynamics::World w(tsupport::no_drift());
+  w.set_threads(3);
+  for (int k = 0; k < 3; ++k) w.step(1e-3);
+  EXPECT_EQ(w.contact_count(), 0u);
+  EXPECT_EQ(w.narrow_phase_failures(), 0u);
+  EXPECT_EQ(w.deepest_overlap().a, -1);
+  EXPECT_EQ(w.shortest_active_contact().a, -1);
+}
