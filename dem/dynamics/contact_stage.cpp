@@ -319,7 +319,7 @@ void World::contact_forces(double dt) {
   }
 
   // Every candidate pair evaluated apart (in parallel: the cache is only read here), then added up in the broad
-  // phase's order on one thread, so the sums, the stored springs and the contact list do not depend on the threads.
+  // phase's order (sum_contacts: in parallel, each slot in pair order), so nothing depends on the threads.
   const std::size_t np = pairs_.size();
   pair_results_.resize(np);
   pair_hit_.resize(np);
