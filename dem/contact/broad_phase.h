@@ -15,6 +15,8 @@ namespace polyfloe::contact {
 
 struct CandidatePair {
   int a = 0, b = 0;  // body indices, a < b
+  int entry = -1;    // the World's neighbour-list entry this pair came from (-1: none), where it keeps what the
+                     // narrow phase may reuse the next step
 };
 
 class GridBroadPhase {

@@ -50,13 +50,166 @@ void least_penetration(std::span<const Vec2> a, std::span<const Vec2> b, PlanarC
   out.depth = std::max(0.0, -max_separation(a, b, out.normal));
 }
 
+// How far inside its edges (times the edge's length) a crossing, and inside the other polygon a vertex of a chain,
+// must lie for a kept topology to be used: far above the round-off of the clipping, so that where the check passes
+// the clipping finds the same topology (docs/model.md, "Kept topologies").
+constexpr double kTopologyMargin = 1e-9;  // [-]
+
+// The crossing of A's edge i (a[i] -> a[i+1]) with the line of B's edge j (b[j-1] -> b[j]) - normal `nrm`
+// (outward, unnormalised) and offset d = nrm . (b[j-1] - origin) - where A's boundary leaves B's half-plane (exit)
+// or enters it: x = p0 + t (p1 - p0) relative to `origin`, from the edge's own end points. The clipping cuts A's
+// edges this way, and a kept topology is built this way, so that both give the same bits. False when A's edge does
+// not cross that line in that sense (round-off, where an earlier cut left a point just off the line).
+struct Crossing {
+  Vec2 x;
+  double t = 0.0;
+};
+bool cross_edge(std::span<const Vec2> a, const Vec2& origin, int i, const Vec2& nrm, double d, bool exit,
+                Crossing& c) {
+  const int na = static_cast<int>(a.size());
+  const Vec2 p0 = a[i] - origin, p1 = a[(i + 1 == na) ? 0 : i + 1] - origin;
+  const double s0 = nrm.dot(p0) - d, s1 = nrm.dot(p1) - d;
+  if (exit ? !(s0 <= 0.0 && s1 > 0.0) : !(s0 > 0.0 && s1 <= 0.0)) return false;
+  c.t = s0 / (s0 - s1);
+  c.x = p0 + c.t * (p1 - p0);
+  return true;
+}
+
+// B's edge j relative to `origin`: its start q0, direction e = q1 - q0, outward normal perp_right(e) and offset.
+struct EdgeLine {
+  Vec2 q0, e, nrm;
+  double d;
+};
+EdgeLine b_edge(std::span<const Vec2> b, const Vec2& origin, int j) {
+  const int nb = static_cast<int>(b.size());
+  const Vec2 q0 = b[(j == 0) ? nb - 1 : j - 1] - origin, q1 = b[j] - origin;
+  const Vec2 nrm = perp_right(q1 - q0);
+  return {q0, q1 - q0, nrm, nrm.dot(q0)};
+}
+
+// Whether v (relative to `origin`) lies inside every edge of the counter-clockwise polygon `poly`, by more than
+// kTopologyMargin times each edge's length.
+bool strictly_inside(std::span<const Vec2> poly, const Vec2& origin, const Vec2& v) {
+  const std::size_t n = poly.size();
+  Vec2 q0 = poly[n - 1] - origin;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 q1 = poly[k] - origin;
+    const Vec2 e = q1 - q0;
+    if (!(perp_right(e).dot(v - q0) < -kTopologyMargin * e.squaredNorm())) return false;
+    q0 = q1;
+  }
+  return true;
+}
+
+// Vertices of A inside B (a_first + 1 ... a_last) and of B inside A (b_first ... b_last - 1) in a topology.
+int chain_a(const OverlapTopology& t, int na) { return t.a_last - t.a_first + (t.a_last < t.a_first ? na : 0); }
+int chain_b(const OverlapTopology& t, int nb) { return t.b_last - t.b_first + (t.b_last < t.b_first ? nb : 0); }
+
+// The overlap polygon of topology t - X2, A's chain, X1, B's chain, with the edge each vertex leaves along - when t
+// is this pair's topology with room to spare; else false. The checks are the steps of the proof in docs/model.md:
+// both crossings inside both their edges, in the right sense, in the right order where they share an edge, and
+// both chains strictly inside the other polygon.
+bool build_from_topology(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin,
+                         const OverlapTopology& t, ClipPolygon& out) {
+  const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
+  if (t.a_first < 0 || t.a_last < 0 || t.b_first < 0 || t.b_last < 0 || t.a_first >= na || t.a_last >= na ||
+      t.b_first >= nb || t.b_last >= nb)
+    return false;
+  const int ca = chain_a(t, na), cb = chain_b(t, nb);
+  // A leaves B at x1 (A's edge a_last, B's edge b_first) and enters it at x2 (a_first, b_last); u: where each
+  // lies along its edge of B.
+  const EdgeLine l1 = b_edge(b, origin, t.b_first), l2 = b_edge(b, origin, t.b_last);
+  Crossing x1, x2;
+  if (!cross_edge(a, origin, t.a_last, l1.nrm, l1.d, true, x1) ||
+      !cross_edge(a, origin, t.a_first, l2.nrm, l2.d, false, x2))
+    return false;
+  const double u1 = (x1.x - l1.q0).dot(l1.e) / l1.e.squaredNorm();
+  const double u2 = (x2.x - l2.q0).dot(l2.e) / l2.e.squaredNorm();
+  constexpr double lo = kTopologyMargin, hi = 1.0 - kTopologyMargin;
+  if (!(x1.t >= lo && x1.t <= hi && u1 >= lo && u1 <= hi && x2.t >= lo && x2.t <= hi && u2 >= lo && u2 <= hi))
+    return false;
+  // Both crossings on one edge of A (no vertex of A inside B): x2 comes first along it, else the part of A's
+  // boundary inside B would be the rest of A. The same on B's side: x1 first.
+  if (ca == 0 && !(x1.t - x2.t > kTopologyMargin)) return false;
+  if (cb == 0 && !(u2 - u1 > kTopologyMargin)) return false;
+  int m = 0;
+  out.p[m] = x2.x;
+  out.edge[m++] = t.a_first;
+  for (int k = 0, i = t.a_first; k < ca; ++k) {
+    i = (i + 1 == na) ? 0 : i + 1;
+    out.p[m] = a[i] - origin;
+    if (!strictly_inside(b, origin, out.p[m])) return false;
+    out.edge[m++] = i;
+  }
+  out.p[m] = x1.x;
+  out.edge[m++] = na + t.b_first;
+  for (int k = 0, j = t.b_first; k < cb; ++k) {
+    out.p[m] = b[j] - origin;
+    if (!strictly_inside(a, origin, out.p[m])) return false;
+    j = (j + 1 == nb) ? 0 : j + 1;
+    out.edge[m++] = na + j;
+  }
+  out.n = m;
+  return true;
+}
+
+// The topology of a clipped polygon: known when its boundary passes from A to B once and back once.
+OverlapTopology read_topology(const ClipPolygon& poly, int na, int nb) {
+  OverlapTopology t;
+  int exits = 0, entries = 0;
+  for (int k = 0, in = poly.edge[poly.n - 1]; k < poly.n; in = poly.edge[k++]) {
+    const int out = poly.edge[k];
+    if (in < na && out >= na) {
+      ++exits;
+      t.a_last = static_cast<std::int8_t>(in);
+      t.b_first = static_cast<std::int8_t>(out - na);
+    } else if (in >= na && out < na) {
+      ++entries;
+      t.b_last = static_cast<std::int8_t>(in - na);
+      t.a_first = static_cast<std::int8_t>(out);
+    }
+  }
+  // Exactly the polygon the topology describes (no vertex more, as where A's boundary enters and leaves B on one
+  // edge with the rest of A inside B).
+  if (exits != 1 || entries != 1 || poly.n != 2 + chain_a(t, na) + chain_b(t, nb)) return {};
+  return t;
+}
+
+// Area, centroid, chord, depth and (with_gradient) the gradient terms of the overlap polygon `poly`.
+bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const ClipPolygon& poly,
+             PlanarContact& out, bool with_gradient);
+
+// A clipped by B's edge lines into `buf` (one of the two buffers); false when they do not overlap.
+const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, ClipPolygon (&buf)[2]);
+
 }  // namespace
 
-bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out, bool with_gradient) {
-  const int na = static_cast<int>(a.size());
-  const int nb = static_cast<int>(b.size());
+bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out, bool with_gradient,
+                    OverlapTopology* topology) {
   // Work relative to A's first vertex: keeps precision for floes far from the origin.
   const Vec2 origin = a[0];
+  ClipPolygon buf[2];
+  const ClipPolygon* poly = nullptr;
+  if (topology && topology->known() && build_from_topology(a, b, origin, *topology, buf[0])) {
+    poly = &buf[0];
+    topology->reused = true;
+  } else {
+    poly = clip(a, b, origin, buf);
+    if (topology)
+      *topology = poly ? read_topology(*poly, static_cast<int>(a.size()), static_cast<int>(b.size()))
+                       : OverlapTopology{};
+    if (!poly) return false;
+  }
+  const bool hit = measure(a, b, origin, *poly, out, with_gradient);
+  if (!hit && topology) *topology = {};
+  return hit;
+}
+
+namespace {
+
+const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, ClipPolygon (&buf)[2]) {
+  const int na = static_cast<int>(a.size());
+  const int nb = static_cast<int>(b.size());
 
   int j_near = 0;  // B's vertex nearest A along the axis: clipping starts with the edges around it
   // Quick rejection along the line between the vertex means: most broad-phase candidates that do not touch are
@@ -76,10 +229,9 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
         j_near = j;
       }
     }
-    if (hi_a <= lo_b && axis != Vec2::Zero()) return false;
+    if (hi_a <= lo_b && axis != Vec2::Zero()) return nullptr;
   }
 
-  ClipPolygon buf[2];
   ClipPolygon* cur = &buf[0];
   ClipPolygon* nxt = &buf[1];
   cur->n = na;
@@ -87,10 +239,6 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     cur->p[i] = a[i] - origin;
     cur->edge[i] = i;
   }
-  // A's edge i runs from a[i] to a[i+1]; B's edge j from b[j-1] to b[j] (the order the clipping visits them).
-  auto a_normal = [&](int i) { return perp_right(a[(i + 1 == na) ? 0 : i + 1] - a[i]); };
-  auto b_normal = [&](int j) { return perp_right(b[j] - b[(j == 0) ? nb - 1 : j - 1]); };
-
   double s[kMaxClipped];
   // The bounding box of the current polygon (centre, half extents): an edge of B whose half-plane holds the whole
   // box cannot cut the polygon, which one test shows (after the first cuts the polygon is the overlap sliver and
@@ -122,13 +270,13 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
       if (s[k] > 0.0) any_out = true; else any_in = true;
     }
     if (!any_out) continue;      // this edge of B does not cut the polygon
-    if (!any_in) return false;   // the polygon lies wholly outside: separated (or touching)
+    if (!any_in) return nullptr;   // the polygon lies wholly outside: separated (or touching)
     int m = 0;
     for (int k = 0; k < cur->n; ++k) {
       const int k1 = (k + 1 == cur->n) ? 0 : k + 1;
       const bool in0 = s[k] <= 0.0, in1 = s[k1] <= 0.0;
       // At most na + nb vertices in exact arithmetic (< kMaxClipped); this only guards the buffer.
-      if (m + 2 > kMaxClipped) return false;
+      if (m + 2 > kMaxClipped) return nullptr;
       if (in0) {
         nxt->p[m] = cur->p[k];
         nxt->edge[m++] = cur->edge[k];
@@ -144,7 +292,39 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     std::swap(cur, nxt);
     if (jj + 1 < nb) bound();
   }
+  // Each vertex on two edges anew from those edges alone: a crossing from A's edge's end points (cross_edge), a
+  // vertex of B as itself. The polygon then does not depend on the order of the cuts, and a kept topology builds
+  // the same bits (where round-off puts a crossing just off its edge, the cut's point stays).
+  // The polygon then starts where A's boundary enters B (as build_from_topology's does): the sums over it run in
+  // the same order.
+  int entry = -1;
+  for (int k = 0, in = cur->edge[cur->n - 1]; k < cur->n; in = cur->edge[k++]) {
+    const int out = cur->edge[k];
+    if ((in < na) != (out < na)) {
+      const bool exit = in < na;
+      if (!exit && entry < 0) entry = k;
+      const EdgeLine l = b_edge(b, origin, (exit ? out : in) - na);
+      Crossing x;
+      if (cross_edge(a, origin, exit ? in : out, l.nrm, l.d, exit, x)) cur->p[k] = x.x;
+    } else if (in >= na && out - na == ((in - na + 1 == nb) ? 0 : in - na + 1)) {
+      cur->p[k] = b[in - na] - origin;
+    }
+  }
+  if (entry > 0) {
+    std::rotate(cur->p, cur->p + entry, cur->p + cur->n);
+    std::rotate(cur->edge, cur->edge + entry, cur->edge + cur->n);
+  }
+  return cur;
+}
 
+bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const ClipPolygon& poly,
+             PlanarContact& out, bool with_gradient) {
+  const int na = static_cast<int>(a.size());
+  const int nb = static_cast<int>(b.size());
+  // A's edge i runs from a[i] to a[i+1]; B's edge j from b[j-1] to b[j] (the order the clipping visits them).
+  auto a_normal = [&](int i) { return perp_right(a[(i + 1 == na) ? 0 : i + 1] - a[i]); };
+  auto b_normal = [&](int j) { return perp_right(b[j] - b[(j == 0) ? nb - 1 : j - 1]); };
+  const ClipPolygon* cur = &poly;
   // Area, centroid and the chord vector of the overlap polygon.
   const int n = cur->n;
   if (n < 3) return false;
@@ -232,6 +412,8 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   out.moment = 0.5 * (m_a - m_b);
   return true;
 }
+
+}  // namespace
 
 double separation_lower_bound(std::span<const Vec2> a, std::span<const Vec2> b) {
   Vec2 axis;

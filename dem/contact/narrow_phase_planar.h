@@ -22,6 +22,7 @@
 // dynamics/contact_stage.cpp assembles the generalised force from these terms.
 #pragma once
 
+#include <cstdint>
 #include <span>
 
 #include "geometry/vec2.h"
@@ -63,11 +64,34 @@ DepthGradient depth_gradient(const PlanarContact& c, const Vec2& x_a, const Vec2
 // overlap or touch. `a`, `b` as for planar_overlap.
 double separation_lower_bound(std::span<const Vec2> a, std::span<const Vec2> b);
 
+// The combinatorial shape of an overlap whose boundaries cross exactly twice (the usual contact of two floes):
+// going counter-clockwise round the overlap polygon, A's boundary runs inside B from the crossing X2 on A's edge
+// a_first, through A's vertices a_first + 1 ... a_last, to the crossing X1 on A's edge a_last, where B's boundary
+// takes over, on B's edge b_first, and runs through B's vertices b_first ... b_last - 1 to X2 on B's edge b_last.
+// A's edge i runs from a[i] to a[i + 1]; B's edge j from b[j - 1] to b[j]. a_first < 0: none (a new pair, or an
+// overlap of another shape: containment, four or more crossings).
+struct OverlapTopology {
+  std::int8_t a_first = -1, a_last = -1, b_first = -1, b_last = -1;
+  bool reused = false;  // set by planar_overlap: whether it built this call's overlap from the topology passed in
+  bool known() const { return a_first >= 0; }
+};
+static_assert(kMaxPolygonVertices <= 127, "OverlapTopology holds edge indices in int8");
+
 // `a`, `b`: world-frame vertices, counter-clockwise, strictly convex, at most kMaxPolygonVertices each.
 // Returns false when the interiors do not overlap; touching (zero overlap area) counts as no contact.
 // `with_gradient`: also fill moment, ga, gb, ha, hb (30-50 ns more per overlapping pair; only the gradient force
 // model and depth_gradient() need them; otherwise they are left zero).
+//
+// `topology` (optional, in and out): a pair's overlap changes its shape rarely from one step to the next, so the
+// caller may keep the topology this function returns and pass it back the next step. A known topology is first
+// checked against the current vertices - both crossings strictly inside their edges, every vertex of both chains
+// strictly inside the other polygon (then the two chains bound A ∩ B exactly: docs/model.md) - and the overlap is
+// built from it in a few operations instead of clipping A by every edge of B. When the check fails, or none is
+// known, A is clipped and the topology read off the result. Either way a two-crossing overlap is built from its
+// topology by the same arithmetic, so the result does not depend on what was passed in (bit for bit: restarts and
+// thread counts see the same contacts whatever the callers kept). On return: the topology of this overlap, or
+// unknown (no contact, or another shape).
 bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out,
-                    bool with_gradient = false);
+                    bool with_gradient = false, OverlapTopology* topology = nullptr);
 
 }  // namespace polyfloe::contact

@@ -113,6 +113,7 @@ void World::build_skin() {
       skin_gap_[static_cast<std::size_t>(e)] = gap;
     }
   }
+  skin_topo_.assign(skin_adj_.size(), contact::OverlapTopology{});
   skin_pos_ = pos_;
   skin_yaw_ = yaw_;
   skin_moved_.assign(static_cast<std::size_t>(n), 0.0);
@@ -153,7 +154,7 @@ void World::candidate_pairs() {
         const int hit = static_cast<int>(box.lo.x() <= o.hi.x()) & static_cast<int>(o.lo.x() <= box.hi.x()) &
                         static_cast<int>(box.lo.y() <= o.hi.y()) & static_cast<int>(o.lo.y() <= box.hi.y()) &
                         static_cast<int>(moved + skin_moved_[sb] >= skin_gap_[e]);
-        out[m] = {std::min(k, s), std::max(k, s)};
+        out[m] = {std::min(k, s), std::max(k, s), e};
         m += static_cast<std::size_t>(hit);
       }
     }
@@ -239,7 +240,7 @@ void World::sum_contacts(int n) {
     for (int e = 0; e < c; ++e)
       for (const std::size_t p : sum_blocks_[e].spilled)
         if (const int b = pairs_[p].b; b >= lo && b < hi) add(pair_results_[p], b);
-    blk.failures = 0;
+    blk.failures = blk.reused = 0;
     blk.worst_q2 = blk.worst_v2 = 0.0;
     blk.worst_a = blk.worst_b = -1;
     blk.deepest = DeepestOverlap{};
@@ -248,6 +249,7 @@ void World::sum_contacts(int n) {
       const PairResult& r = pair_results_[p];
       blk.failures += r.fallback;
       if (!r.hit) continue;
+      blk.reused += r.reused;
       const SlotStatic& A = slot_static_[r.a];
       const SlotStatic& B = slot_static_[r.b];
       if (r.q2 > blk.worst_q2) {
@@ -279,6 +281,7 @@ void World::sum_contacts(int n) {
   deepest_ = DeepestOverlap{};
   for (const SumBlock& blk : sum_blocks_) {
     narrow_phase_failures_ += blk.failures;
+    profile_.reused += blk.reused;
     if (blk.worst_q2 > worst_q2_) {
       worst_q2_ = blk.worst_q2;
       worst_v2_ = blk.worst_v2;
@@ -333,6 +336,7 @@ void World::contact_forces(double dt) {
     r.hit = false;
     pair_hit_[static_cast<std::size_t>(p)] = 0;
     r.fallback = false;
+    r.reused = false;
     // Orient every pair by id so the stored spring has one meaning whatever the index order.
     int a = pairs_[p].a, b = pairs_[p].b;
     if (slot_static_[a].id > slot_static_[b].id) std::swap(a, b);
@@ -356,8 +360,12 @@ void World::contact_forces(double dt) {
         r.fallback = true;
         if (!contact::planar_overlap(verts_a, verts_b, g, gradient)) continue;
       }
-    } else if (!contact::planar_overlap(verts_a, verts_b, g, gradient)) {
-      continue;
+    } else {
+      // The topology this listed pair's overlap had at its last contact (see planar_overlap), kept for the next.
+      const int e = pairs_[p].entry;
+      contact::OverlapTopology* topology = e >= 0 ? &skin_topo_[static_cast<std::size_t>(e)] : nullptr;
+      if (!contact::planar_overlap(verts_a, verts_b, g, gradient, topology)) continue;
+      r.reused = topology && topology->reused;
     }
 
     const SlotState& sa = slot_state_[a];

@@ -16,6 +16,7 @@
 #include "bonds/bond_set.h"
 #include "contact/broad_phase.h"
 #include "contact/contact_cache.h"
+#include "contact/narrow_phase_planar.h"
 #include "contact/contact_law.h"
 #include "contact/narrow_phase_gjk2d.h"
 #include "contact/narrow_phase_planar.h"
@@ -74,6 +75,7 @@ struct StepProfile {
   double integrate = 0.0, shapes = 0.0, broad = 0.0, narrow_and_law = 0.0, forcing = 0.0, bonds = 0.0;
   std::uint64_t steps = 0;
   std::uint64_t candidates = 0, contacts = 0;  // broad-phase pairs and contacts, summed over the evaluations
+  std::uint64_t reused = 0;  // contacts whose overlap was built from the topology kept from the step before
 };
 
 // Everything that carries from one step to the next and is not rebuilt from the scene: what a checkpoint stores
@@ -325,6 +327,9 @@ class World {
   // slot -> body and body -> slot.
   std::vector<int> skin_off_, skin_adj_, skin_body_, skin_slot_;
   std::vector<double> skin_gap_;    // per listed pair: its distance at the build, from below, less a margin [m]
+  // Per listed pair: its overlap's topology at its last contact (planar_overlap checks it before use; unknown
+  // after a build).
+  std::vector<contact::OverlapTopology> skin_topo_;
   std::vector<double> skin_moved_;  // by the build's slot: how far the body's vertices may have moved since [m]
   std::vector<geometry::Aabb> skin_boxes_;
   std::uint64_t skin_builds_ = 0;
@@ -340,6 +345,7 @@ class World {
   struct PairResult {
     bool hit = false;
     bool fallback = false;  // the 2-D GJK-EPA failed on it: measured exactly (beside `hit`: no growth in size)
+    bool reused = false;    // its overlap was built from the kept topology (OverlapTopology::reused)
     int a = 0, b = 0;  // slots, ordered by id
     ContactGeometry g;
     contact::ContactForce cf;
@@ -355,7 +361,7 @@ class World {
   struct SumBlock {
     std::size_t first_pair = 0, first_store = 0, hits = 0;
     std::vector<std::size_t> spilled;
-    std::uint64_t failures = 0;
+    std::uint64_t failures = 0, reused = 0;
     double worst_q2 = 0.0, worst_v2 = 0.0;
     int worst_a = -1, worst_b = -1;
     DeepestOverlap deepest;

@@ -468,9 +468,11 @@ RunSummary Simulation::run() {
     const std::uint64_t builds = world_.neighbour_list_builds();
     const double body_steps = static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world_.size();
     std::fprintf(stderr,
-                 "contact search: %.2f candidate pairs and %.2f contacts per body-step; neighbour lists built %llu "
-                 "times (every %.0f steps; contact.broad_phase_skin)\n",
+                 "contact search: %.2f candidate pairs and %.2f contacts per body-step (%.1f %% of them built from "
+                 "the overlap's topology of the step before); neighbour lists built %llu times (every %.0f steps; "
+                 "contact.broad_phase_skin)\n",
                  static_cast<double>(p.candidates) / body_steps, static_cast<double>(p.contacts) / body_steps,
+                 100.0 * static_cast<double>(p.reused) / static_cast<double>(std::max<std::uint64_t>(p.contacts, 1)),
                  static_cast<unsigned long long>(builds),
                  static_cast<double>(p.steps) / static_cast<double>(std::max<std::uint64_t>(builds, 1)));
   }

@@ -8,6 +8,11 @@
 //                           to 5 km from the origin as in a real domain.
 //   BM_PlanarSeparated/<n>  candidate pairs the broad phase would pass on (bounding boxes overlap) whose polygons are
 //                           separated by a gap log-uniform from 1 mm to 10 % of the smaller size: the rejection cost.
+//   BM_PlanarOverlapKept/<n> the overlapping pairs again, each with the topology planar_overlap returned one time
+//                           step earlier (B 1 mm back along a random direction and turned by 1e-4 rad about its
+//                           centre): what a persisting contact costs in the World, which keeps the topology per pair.
+//                           Counter kept_fraction: the pairs whose kept topology passed its check (the rest were
+//                           clipped anew, included in the time).
 //
 //   BM_Method/<m>/12        the same overlapping 12-vertex pairs through every contact method, as level prisms
 //                           (h = 1 m, z in [-0.5, 0.5]) for the 3-D ones: m = 0 exact planar, 1 own 2-D GJK-EPA,
@@ -24,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -154,24 +160,26 @@ std::string check_pairs(const PairSet& s, bool overlapping) {
   return "";
 }
 
-void run(benchmark::State& state, bool overlapping) {
-  const int n = static_cast<int>(state.range(0));
-  const PairSet& s = pairs_for(n, overlapping);
-  if (const std::string err = check_pairs(s, overlapping); !err.empty()) {
-    state.SkipWithError(err.c_str());
-    return;
-  }
-  // Spans built up front so the timed loop is the call alone.
+// Spans built up front so the timed loop is the call alone.
+std::vector<std::span<const Vec2>> spans_of(const PairSet& s) {
   std::vector<std::span<const Vec2>> polys;
   for (int k = 0; k < 2 * kPairs; ++k) polys.push_back(s.poly(k));
+  return polys;
+}
+
+// The timed loop: planar_overlap on pair after pair (with each pair's kept topology, when given).
+void time_pairs(benchmark::State& state, const std::vector<std::span<const Vec2>>& polys,
+                const std::vector<contact::OverlapTopology>* kept) {
   contact::PlanarContact c;
   std::uint32_t k = 0;
   std::int64_t hits = 0;
   const double cpu0 = thread_cpu_seconds();
   for (auto _ : state) {
-    const bool hit = contact::planar_overlap(polys[2 * k], polys[2 * k + 1], c);
+    contact::OverlapTopology t = kept ? (*kept)[k] : contact::OverlapTopology{};
+    const bool hit = contact::planar_overlap(polys[2 * k], polys[2 * k + 1], c, false, kept ? &t : nullptr);
     benchmark::DoNotOptimize(hit);
     benchmark::DoNotOptimize(c);
+    benchmark::DoNotOptimize(t);
     hits += hit;
     k = (k + 1) & (kPairs - 1);
   }
@@ -180,11 +188,63 @@ void run(benchmark::State& state, bool overlapping) {
   state.SetItemsProcessed(state.iterations());
   // CPU ns per pair over the timed loop (the CPU column, spelled out for readers of the JSON).
   state.counters["ns_per_pair"] = cpu_ns / static_cast<double>(state.iterations());
-  state.counters["vertices"] = n;
+  state.counters["vertices"] = static_cast<double>(state.range(0));
+}
+
+void run(benchmark::State& state, bool overlapping) {
+  const int n = static_cast<int>(state.range(0));
+  const PairSet& s = pairs_for(n, overlapping);
+  if (const std::string err = check_pairs(s, overlapping); !err.empty()) {
+    state.SkipWithError(err.c_str());
+    return;
+  }
+  time_pairs(state, spans_of(s), nullptr);
 }
 
 void BM_PlanarOverlap(benchmark::State& state) { run(state, true); }
 void BM_PlanarSeparated(benchmark::State& state) { run(state, false); }
+
+void BM_PlanarOverlapKept(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const PairSet& s = pairs_for(n, true);
+  if (const std::string err = check_pairs(s, true); !err.empty()) {
+    state.SkipWithError(err.c_str());
+    return;
+  }
+  const std::vector<std::span<const Vec2>> polys = spans_of(s);
+  // Each pair's topology one step earlier: B moved back by 1 mm and turned back by 1e-4 rad about its centre.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<contact::OverlapTopology> kept(kPairs);
+  int accepted = 0;
+  for (int k = 0; k < kPairs; ++k) {
+    const std::span<const Vec2> b = polys[2 * k + 1];
+    Vec2 centre{0.0, 0.0};
+    for (const Vec2& q : b) centre += q;
+    centre /= static_cast<double>(b.size());
+    const double ang = 2.0 * std::numbers::pi * u(rng), c = std::cos(1e-4), sn = std::sin(1e-4);
+    const Vec2 back = 1e-3 * Vec2{std::cos(ang), std::sin(ang)};
+    std::vector<Vec2> earlier;
+    for (const Vec2& q : b) {
+      const Vec2 r = q - centre;
+      earlier.push_back(centre + back + Vec2{c * r.x() + sn * r.y(), -sn * r.x() + c * r.y()});
+    }
+    contact::PlanarContact g;
+    contact::planar_overlap(polys[2 * k], earlier, g, false, &kept[k]);
+    // Whether the check passes now, and that it changes nothing.
+    contact::OverlapTopology t = kept[k];
+    contact::PlanarContact fresh, reused;
+    contact::planar_overlap(polys[2 * k], b, fresh);
+    contact::planar_overlap(polys[2 * k], b, reused, false, &t);
+    if (std::memcmp(&fresh, &reused, sizeof fresh) != 0) {
+      state.SkipWithError(("pair " + std::to_string(k) + ": the kept topology changed the result").c_str());
+      return;
+    }
+    accepted += t.reused;
+  }
+  time_pairs(state, polys, &kept);
+  state.counters["kept_fraction"] = static_cast<double>(accepted) / kPairs;
+}
 
 const char* kMethodNames[] = {"planar", "gjk2d", "sat3d", "ccd_gjk_epa", "ccd_gjk_epa_tiebreak", "ccd_mpr"};
 
@@ -249,5 +309,6 @@ void BM_Method(benchmark::State& state) {
 BENCHMARK(BM_Method)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {12}})->MinTime(0.3);
 BENCHMARK(BM_PlanarOverlap)->Arg(4)->Arg(8)->Arg(12)->Arg(20)->MinTime(0.3);
 BENCHMARK(BM_PlanarSeparated)->Arg(4)->Arg(8)->Arg(12)->Arg(20)->MinTime(0.3);
+BENCHMARK(BM_PlanarOverlapKept)->Arg(4)->Arg(8)->Arg(12)->Arg(20)->MinTime(0.3);
 
 BENCHMARK_MAIN();

@@ -12,7 +12,8 @@
 // both placed outlines are still valid (the narrow phase's precondition) planar_overlap() must give, both ways:
 //   finite outputs (with and without the gradient terms, and depth_gradient()); a unit normal; area > 0 and at
 //   most the smaller polygon's area; the overlap centroid inside both bounding boxes; the same area A-B and B-A;
-//   no contact when the bounding boxes are apart; a contact when a point lies well inside both polygons.
+//   no contact when the bounding boxes are apart; a contact when a point lies well inside both polygons;
+//   the same bits when given a kept topology - a fuzzer-chosen one, or the one the call itself returned.
 // A violated check prints what failed and aborts (a crash for libFuzzer, which saves the input).
 #include <fuzzer/FuzzedDataProvider.h>
 
@@ -22,6 +23,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -228,7 +230,7 @@ void check_contact(const contact::PlanarContact& c, const Placed& a, const Place
   g_contact = nullptr;
 }
 
-void check_pair(const Placed& a, const Placed& b, bool with_gradient) {
+void check_pair(const Placed& a, const Placed& b, bool with_gradient, const contact::OverlapTopology& kept) {
   // Round-off: the narrow phase works in coordinates relative to one vertex, so a coordinate is known to about
   // epsilon x (the pair's extent + the coordinates' magnitude). An area to that times the perimeters, and the
   // centroid of an overlap to its size times the relative error of its area (a polygon thinner than the round-off
@@ -248,6 +250,16 @@ void check_pair(const Placed& a, const Placed& b, bool with_gradient) {
   const bool hit_ab = contact::planar_overlap(a.v, b.v, ab, with_gradient);
   const bool hit_ba = contact::planar_overlap(b.v, a.v, ba, with_gradient);
   if (hit_ab) check_contact(ab, a, b, area_tol, point_tol);
+  // A kept topology changes nothing: neither a chosen one nor the one this overlap returns (passed back as the next
+  // step would).
+  contact::OverlapTopology own;
+  for (const contact::OverlapTopology* t : {&kept, &own}) {
+    contact::OverlapTopology topology = *t;
+    contact::PlanarContact again;
+    CHECK(contact::planar_overlap(a.v, b.v, again, with_gradient, &topology) == hit_ab);
+    if (hit_ab) CHECK(std::memcmp(&again, &ab, sizeof ab) == 0);
+    if (t == &kept) own = topology;
+  }
   if (hit_ba) check_contact(ba, b, a, area_tol, point_tol);
   CHECK_LE(std::abs((hit_ab ? ab.area : 0.0) - (hit_ba ? ba.area : 0.0)), area_tol);
   if (with_gradient && hit_ab) {
@@ -284,9 +296,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Vec2 at_b{next_double(in, at_a.x()), next_double(in, at_a.y())};
   const double yaw_b = next_double(in, yaw_a);
   const bool with_gradient = in.ConsumeBool();
+  contact::OverlapTopology kept;
+  kept.a_first = in.ConsumeIntegralInRange<std::int8_t>(-1, 20);
+  kept.a_last = in.ConsumeIntegralInRange<std::int8_t>(0, 20);
+  kept.b_first = in.ConsumeIntegralInRange<std::int8_t>(0, 20);
+  kept.b_last = in.ConsumeIntegralInRange<std::int8_t>(0, 20);
   const std::optional<Placed> a = place(*pa, at_a, yaw_a);
   const std::optional<Placed> b = place(*pb, at_b, yaw_b);
-  if (a && b) check_pair(*a, *b, with_gradient);
-  if (a) check_pair(*a, *a, with_gradient);  // a polygon on itself: full overlap
+  if (a && b) check_pair(*a, *b, with_gradient, kept);
+  if (a) check_pair(*a, *a, with_gradient, kept);  // a polygon on itself: full overlap
   return 0;
 }

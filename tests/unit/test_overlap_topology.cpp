@@ -1,0 +1,161 @@
+// Kept overlap topologies (contact::OverlapTopology): planar_overlap given the topology of an earlier step builds the
+// overlap from it instead of clipping, and must give the same bits as a fresh call whatever topology it is given -
+// the current one, a stale one, a wrong one, garbage - or else the World's results would depend on what it kept
+// (restarts, thread counts). And it must actually be used: a test that reuse happens for persisting contacts.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "contact/narrow_phase_planar.h"
+#include "test_support.h"
+
+using namespace polyfloe;
+using contact::OverlapTopology;
+using contact::PlanarContact;
+using geometry::Vec2;
+
+namespace {
+
+bool same_topology(const OverlapTopology& x, const OverlapTopology& y) {
+  return x.a_first == y.a_first && x.a_last == y.a_last && x.b_first == y.b_first && x.b_last == y.b_last;
+}
+
+// Calls planar_overlap with and without `kept` (for both gradient settings) and reports the first difference.
+// `reused`: whether the kept topology passed its check (the call says so; it then comes back unchanged).
+std::string compare(const std::vector<Vec2>& a, const std::vector<Vec2>& b, OverlapTopology& kept, bool* reused) {
+  for (const bool gradient : {false, true}) {
+    PlanarContact fresh, again;
+    OverlapTopology fresh_topology, t = kept;
+    const bool hit_fresh = contact::planar_overlap(a, b, fresh, gradient, &fresh_topology);
+    const bool hit_again = contact::planar_overlap(a, b, again, gradient, &t);
+    PlanarContact plain;
+    const bool hit_plain = contact::planar_overlap(a, b, plain, gradient);
+    if (hit_fresh != hit_again || hit_fresh != hit_plain) return "contact or not differs";
+    if (hit_fresh && std::memcmp(&fresh, &again, sizeof fresh) != 0) {
+      return "kept topology changed the result: area " + std::to_string(fresh.area) + " vs " +
+             std::to_string(again.area) + ", depth " + std::to_string(fresh.depth) + " vs " +
+             std::to_string(again.depth);
+    }
+    if (hit_fresh && std::memcmp(&fresh, &plain, sizeof fresh) != 0) return "the topology argument changed the result";
+    if (!same_topology(t, fresh_topology)) return "the returned topology depends on the one passed in";
+    if (t.reused != (kept.known() && same_topology(kept, t) && t.known()) && t.reused)
+      return "reported as reused with another topology";
+    if (reused && !gradient) *reused = t.reused;
+    if (gradient) kept = t;
+  }
+  return "";
+}
+
+std::vector<Vec2> moved(const std::vector<Vec2>& v, const Vec2& shift, double turn) {
+  Vec2 c{0.0, 0.0};
+  for (const Vec2& p : v) c += p;
+  c /= static_cast<double>(v.size());
+  const double cs = std::cos(turn), sn = std::sin(turn);
+  std::vector<Vec2> out;
+  for (const Vec2& p : v) out.push_back(c + shift + geometry::rotate(p - c, cs, sn));
+  return out;
+}
+
+}  // namespace
+
+// Pairs of random floes (4-20 corners, 5-100 m, 5 km from the origin) pressed into each other and then moved a
+// step at a time (B by up to 2 mm and 2e-4 rad a step, 60 steps): every step's call with the topology kept from the
+// step before gives the same bits as a fresh call, and most persisting contacts reuse it.
+TEST(OverlapTopology, KeptTopologyGivesTheSameBitsAndIsReused) {
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  long calls = 0, known = 0, reused_count = 0;
+  for (int pair = 0; pair < 400; ++pair) {
+    const int na = 4 + static_cast<int>(u(rng) * 17), nb = 4 + static_cast<int>(u(rng) * 17);
+    const double ra = 2.5 + 47.5 * u(rng), rb = 2.5 + 47.5 * u(rng);
+    const Vec2 where{5000.0 * (2.0 * u(rng) - 1.0), 5000.0 * (2.0 * u(rng) - 1.0)};
+    const auto a = tsupport::transform(tsupport::random_convex(rng, na, ra, ra * (0.5 + 0.5 * u(rng))),
+                                       2.0 * std::numbers::pi * u(rng), where);
+    const auto b0 = tsupport::random_convex(rng, nb, rb, rb * (0.5 + 0.5 * u(rng)));
+    // B placed so that it just reaches into A along a random direction.
+    const double ang = 2.0 * std::numbers::pi * u(rng);
+    const Vec2 dir{std::cos(ang), std::sin(ang)};
+    auto b = tsupport::transform(b0, 2.0 * std::numbers::pi * u(rng), where + (ra + rb) * dir);
+    for (int k = 0; k < 200; ++k) {  // walk in until the boxes' overlap is a few percent
+      PlanarContact g;
+      if (contact::planar_overlap(a, b, g) && g.depth > 0.01 * std::min(ra, rb)) break;
+      b = moved(b, -0.01 * std::min(ra, rb) * dir, 0.0);
+    }
+    OverlapTopology kept;
+    for (int step = 0; step < 60; ++step) {
+      const double s = 2e-3 * u(rng), th = 2.0 * std::numbers::pi * u(rng);
+      b = moved(b, s * Vec2{std::cos(th), std::sin(th)}, 2e-4 * (2.0 * u(rng) - 1.0));
+      bool reused = false;
+      known += kept.known();
+      const std::string err = compare(a, b, kept, &reused);
+      ASSERT_TRUE(err.empty()) << "pair " << pair << " step " << step << ": " << err;
+      ++calls;
+      reused_count += reused;
+    }
+  }
+  // The walk keeps most pairs touching; of the calls with a known topology nearly all reuse it (the rest saw a
+  // crossing move to the next edge, or a vertex pass the other floe's edge).
+  EXPECT_GT(known, calls / 2);
+  EXPECT_GT(reused_count, 9 * known / 10) << reused_count << " of " << known;
+  std::printf("%ld calls, %ld with a known topology, %ld reused it\n", calls, known, reused_count);
+}
+
+// Whatever topology is passed - every combination of edge indices for small polygons, and out-of-range ones - the
+// result is the fresh call's, and the topology returned is the fresh call's.
+TEST(OverlapTopology, AnyTopologyPassedInGivesTheFreshResult) {
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int pair = 0; pair < 40; ++pair) {
+    const auto a = tsupport::transform(tsupport::random_convex(rng, 5, 10.0, 7.0), 6.0 * u(rng), {100.0, -40.0});
+    const auto b = tsupport::transform(tsupport::random_convex(rng, 4, 6.0, 5.0), 6.0 * u(rng),
+                                       Vec2{100.0, -40.0} + Vec2{12.0 * u(rng) - 6.0, 12.0 * u(rng) - 6.0});
+    for (int i1 = 0; i1 < 6; ++i1)
+      for (int i2 = 0; i2 < 6; ++i2)
+        for (int j1 = 0; j1 < 5; ++j1)
+          for (int j2 = 0; j2 < 5; ++j2) {
+            OverlapTopology t{static_cast<std::int8_t>(i1), static_cast<std::int8_t>(i2),
+                              static_cast<std::int8_t>(j1), static_cast<std::int8_t>(j2)};
+            const std::string err = compare(a, b, t, nullptr);
+            ASSERT_TRUE(err.empty()) << "pair " << pair << " topology " << i1 << i2 << j1 << j2 << ": " << err;
+          }
+  }
+}
+
+// Overlaps of other shapes have no topology to keep: containment, and the eight crossings of a square and the same
+// square turned by 45 degrees. The usual corner-into-edge contact has one, with the right edges.
+TEST(OverlapTopology, OnlyTwoCrossingOverlapsHaveATopology) {
+  const std::vector<Vec2> square{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  const double r = std::sqrt(2.0);
+  const std::vector<Vec2> diamond{{r, 0}, {0, r}, {-r, 0}, {0, -r}};
+  const std::vector<Vec2> small{{-0.1, -0.1}, {0.1, -0.1}, {0.1, 0.1}, {-0.1, 0.1}};
+  PlanarContact g;
+  OverlapTopology t{0, 0, 0, 0};
+  ASSERT_TRUE(contact::planar_overlap(square, diamond, g, false, &t));
+  EXPECT_FALSE(t.known());
+  t = {0, 1, 2, 3};
+  ASSERT_TRUE(contact::planar_overlap(square, small, g, false, &t));
+  EXPECT_FALSE(t.known());
+  // The diamond's corner (0, -r) pushed up into the square's top edge from above: B = diamond + (0, 1 + r - 0.1).
+  std::vector<Vec2> above;
+  for (const Vec2& p : diamond) above.push_back(p + Vec2{0.0, 1.0 + r - 0.1});
+  ASSERT_TRUE(contact::planar_overlap(square, above, g, false, &t));
+  ASSERT_TRUE(t.known());
+  // A's boundary inside B: a piece of the top edge (edge 2, (1,1) -> (-1,1)), no vertex; B's: its bottom corner
+  // (vertex 3), between its edges 3 ((-r,0) -> (0,-r)) and 0 ((0,-r) -> (r,0)).
+  EXPECT_EQ(t.a_first, 2);
+  EXPECT_EQ(t.a_last, 2);
+  EXPECT_EQ(t.b_first, 3);
+  EXPECT_EQ(t.b_last, 0);
+  OverlapTopology kept = t;
+  EXPECT_TRUE(compare(square, above, kept, nullptr).empty());
+  // Separated: unknown.
+  std::vector<Vec2> apart;
+  for (const Vec2& p : diamond) apart.push_back(p + Vec2{0.0, 5.0});
+  EXPECT_FALSE(contact::planar_overlap(square, apart, g, false, &t));
+  EXPECT_FALSE(t.known());
+}
