@@ -252,14 +252,13 @@ void check_pair(const Placed& a, const Placed& b, bool with_gradient, const cont
   if (hit_ab) check_contact(ab, a, b, area_tol, point_tol);
   // A kept topology changes nothing: neither a chosen one nor the one this overlap returns (passed back as the next
   // step would).
-  contact::OverlapTopology own;
-  for (const contact::OverlapTopology* t : {&kept, &own}) {
-    contact::OverlapTopology topology = *t;
+  auto same_with = [&](contact::OverlapTopology topology) {
     contact::PlanarContact again;
     CHECK(contact::planar_overlap(a.v, b.v, again, with_gradient, &topology) == hit_ab);
     if (hit_ab) CHECK(std::memcmp(&again, &ab, sizeof ab) == 0);
-    if (t == &kept) own = topology;
-  }
+    return topology;
+  };
+  same_with(same_with(kept));
   if (hit_ba) check_contact(ba, b, a, area_tol, point_tol);
   CHECK_LE(std::abs((hit_ab ? ab.area : 0.0) - (hit_ba ? ba.area : 0.0)), area_tol);
   if (with_gradient && hit_ab) {
