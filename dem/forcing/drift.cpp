@@ -51,10 +51,12 @@ void form_drag(DriftLoad& load, double coefficient, double rho, double draft, co
     const Vec2 w = m.velocity_at(r) - water[i];
     // (w . n) L with n L = perp_right(b - a): the face's normal velocity times its length [m^2/s].
     const double wn_len = w.dot(geometry::perp_right(b - a));
-    // f = -k L d (w.n) w: along w its derivative is 2 k L d (w.n), across it k L d (w.n). A face in the lee
-    // (w.n <= 0) adds zeros: no branch to mispredict.
+    // A face in the lee (w.n <= 0) feels nothing (its terms would all be zeros, which change no bit of the sums;
+    // a NaN goes on into them). The faces facing the flow are one run of the outline, so the branch turns twice.
+    if (wn_len <= 0.0) continue;
+    // f = -k L d (w.n) w: along w its derivative is 2 k L d (w.n), across it k L d (w.n).
     const double speed = w.norm();
-    acc.add(k * std::max(wn_len, 0.0), r, w, speed > 0.0 ? 1.0 / speed : 0.0);
+    acc.add(k * wn_len, r, w, speed > 0.0 ? 1.0 / speed : 0.0);
   }
   load += acc;
 }
