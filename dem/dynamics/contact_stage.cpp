@@ -93,6 +93,7 @@ void World::build_skin() {
   // Less a margin far above the round-off of the coordinates, so that a skipped pair is one planar_overlap would
   // certainly reject; the comparison method (gjk_epa, with its own tolerance) skips none.
   skin_gap_.resize(skin_adj_.size());
+  skin_coef_.resize(skin_adj_.size());
   const bool exact = settings_.narrow_phase == PlanarNarrowPhase::exact;
   POLYFLOE_OMP_FOR(threads_)
   for (int k = 0; k < n; ++k) {
@@ -111,6 +112,7 @@ void World::build_skin() {
         gap = contact::separation_lower_bound(va, vb) - 1e-9 * (1.0 + scale);
       }
       skin_gap_[static_cast<std::size_t>(e)] = gap;
+      skin_coef_[static_cast<std::size_t>(e)] = law_.coefficients(A.radius, B.radius, A.mass, B.mass);
     }
   }
   skin_topo_.assign(skin_adj_.size(), contact::OverlapTopology{});
@@ -393,7 +395,9 @@ void World::contact_forces(double dt) {
     }
 
     const contact::PairKey key{A.id, B.id};
-    contact::PairCoefficients k = law_.coefficients(A.radius, B.radius, A.mass, B.mass);
+    // (symmetric in the two bodies, bit for bit: the list's order of the pair does not matter)
+    contact::PairCoefficients k = pairs_[p].entry >= 0 ? skin_coef_[static_cast<std::size_t>(pairs_[p].entry)]
+                                                       : law_.coefficients(A.radius, B.radius, A.mass, B.mass);
     // Coulomb caps friction by the normal component of the contact force; in the gradient model that is
     // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
     // penetration).

@@ -330,6 +330,9 @@ class World {
   // Per listed pair: its overlap's topology at its last contact (planar_overlap checks it before use; unknown
   // after a build).
   std::vector<contact::OverlapTopology> skin_topo_;
+  // Per listed pair: the contact law's coefficients of its two bodies (a function of their radii and masses alone,
+  // so computed once per build, in the same arithmetic as per contact).
+  std::vector<contact::PairCoefficients> skin_coef_;
   std::vector<double> skin_moved_;  // by the build's slot: how far the body's vertices may have moved since [m]
   std::vector<geometry::Aabb> skin_boxes_;
   std::uint64_t skin_builds_ = 0;
