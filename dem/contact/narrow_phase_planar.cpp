@@ -180,7 +180,47 @@ bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origi
              PlanarContact& out, bool with_gradient);
 
 // A clipped by B's edge lines into `buf` (one of the two buffers); false when they do not overlap.
-const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, ClipPolygon (&buf)[2]);
+// `apart`: set to the edge of B whose line the whole of A lies outside, where the clipping ends there before any cut;
+// to -2 where it ends after cuts.
+const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, ClipPolygon (&buf)[2],
+                        int& apart);
+
+// Whether all of `p` lies outside the line of `q`'s edge j (q[j-1] -> q[j]) by more than kTopologyMargin times the
+// edge's length.
+bool outside_edge(std::span<const Vec2> p, std::span<const Vec2> q, const Vec2& origin, int j) {
+  const EdgeLine l = b_edge(q, origin, j);
+  const double margin = kTopologyMargin * l.e.squaredNorm();
+  for (const Vec2& x : p)
+    if (!(l.nrm.dot(x - origin) - l.d > margin)) return false;
+  return true;
+}
+
+// The edge (of A or of B, as outside_edge numbers them) along whose outward normal the two polygons are farthest
+// apart, into t.a_apart or t.b_apart, when that separation passes outside_edge's margin.
+void find_apart_edge(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, OverlapTopology& t) {
+  auto best = [&](std::span<const Vec2> p, std::span<const Vec2> q, double& sep) {  // q's edge with p farthest out
+    const int nq = static_cast<int>(q.size());
+    int arg = -1;
+    for (int j = 0; j < nq; ++j) {
+      const EdgeLine l = b_edge(q, origin, j);
+      double lo = std::numeric_limits<double>::infinity();
+      for (const Vec2& x : p) lo = std::min(lo, l.nrm.dot(x - origin) - l.d);
+      if (const double s = lo / std::sqrt(l.e.squaredNorm()); s > sep) {
+        sep = s;
+        arg = j;
+      }
+    }
+    return arg;
+  };
+  double sep_b = -std::numeric_limits<double>::infinity(), sep_a = sep_b;
+  const int jb = best(a, b, sep_b), ja = best(b, a, sep_a);
+  if (sep_b >= sep_a ? jb >= 0 && outside_edge(a, b, origin, jb) : ja >= 0 && outside_edge(b, a, origin, ja)) {
+    if (sep_b >= sep_a)
+      t.b_apart = static_cast<std::int8_t>(jb);
+    else
+      t.a_apart = static_cast<std::int8_t>(ja);
+  }
+}
 
 }  // namespace
 
@@ -190,14 +230,30 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
   const Vec2 origin = a[0];
   ClipPolygon buf[2];
   const ClipPolygon* poly = nullptr;
+  if (topology && ((topology->b_apart >= 0 && topology->b_apart < static_cast<int>(b.size()) &&
+                    outside_edge(a, b, origin, topology->b_apart)) ||
+                   (topology->a_apart >= 0 && topology->a_apart < static_cast<int>(a.size()) &&
+                    outside_edge(b, a, origin, topology->a_apart)))) {
+    // Apart still, as the kept edge shows (and the clipping would find).
+    *topology = OverlapTopology{.a_apart = topology->a_apart, .b_apart = topology->b_apart, .reused = true};
+    return false;
+  }
   if (topology && topology->known() && build_from_topology(a, b, origin, *topology, buf[0])) {
     poly = &buf[0];
     topology->reused = true;
   } else {
-    poly = clip(a, b, origin, buf);
-    if (topology)
+    int apart = -1;
+    poly = clip(a, b, origin, buf, apart);
+    if (topology) {
       *topology = poly ? read_topology(*poly, static_cast<int>(a.size()), static_cast<int>(b.size()))
                        : OverlapTopology{};
+      // Apart: the edge of B that showed it before any cut; else (the vertex means' line showed it, or the clipping
+      // after cuts) the edge of either polygon with the largest separation, found once for the steps to come.
+      if (apart >= 0)
+        topology->b_apart = static_cast<std::int8_t>(apart);
+      else if (!poly)
+        find_apart_edge(a, b, origin, *topology);
+    }
     if (!poly) return false;
   }
   const bool hit = measure(a, b, origin, *poly, out, with_gradient);
@@ -207,7 +263,8 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
 
 namespace {
 
-const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, ClipPolygon (&buf)[2]) {
+const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, ClipPolygon (&buf)[2],
+                        int& apart) {
   const int na = static_cast<int>(a.size());
   const int nb = static_cast<int>(b.size());
 
@@ -235,6 +292,7 @@ const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const 
   ClipPolygon* cur = &buf[0];
   ClipPolygon* nxt = &buf[1];
   cur->n = na;
+  bool whole = true;  // cur is A itself
   for (int i = 0; i < na; ++i) {
     cur->p[i] = a[i] - origin;
     cur->edge[i] = i;
@@ -270,7 +328,10 @@ const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const 
       if (s[k] > 0.0) any_out = true; else any_in = true;
     }
     if (!any_out) continue;      // this edge of B does not cut the polygon
-    if (!any_in) return nullptr;   // the polygon lies wholly outside: separated (or touching)
+    if (!any_in) {  // the polygon lies wholly outside: separated (or touching)
+      apart = whole ? j : -2;  // not cut yet: all of A lies outside this line; else it took several lines
+      return nullptr;
+    }
     int m = 0;
     for (int k = 0; k < cur->n; ++k) {
       const int k1 = (k + 1 == cur->n) ? 0 : k + 1;
@@ -290,6 +351,7 @@ const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const 
     }
     nxt->n = m;
     std::swap(cur, nxt);
+    whole = false;
     if (jj + 1 < nb) bound();
   }
   // Each vertex on two edges anew from those edges alone: a crossing from A's edge's end points (cross_edge), a

@@ -70,9 +70,12 @@ double separation_lower_bound(std::span<const Vec2> a, std::span<const Vec2> b);
 // takes over, on B's edge b_first, and runs through B's vertices b_first ... b_last - 1 to X2 on B's edge b_last.
 // A's edge i runs from a[i] to a[i + 1]; B's edge j from b[j - 1] to b[j]. a_first < 0: none (a new pair, or an
 // overlap of another shape: containment, four or more crossings).
+// For a pair found apart: an edge whose line has all of the other polygon outside it (b_apart: an edge of B, with
+// A outside; a_apart: an edge of A, with B outside; -1: none), which the next call tests first.
 struct OverlapTopology {
   std::int8_t a_first = -1, a_last = -1, b_first = -1, b_last = -1;
-  bool reused = false;  // set by planar_overlap: whether it built this call's overlap from the topology passed in
+  std::int8_t a_apart = -1, b_apart = -1;
+  bool reused = false;  // set by planar_overlap: whether this call's answer came from what was passed in
   bool known() const { return a_first >= 0; }
 };
 static_assert(kMaxPolygonVertices <= 127, "OverlapTopology holds edge indices in int8");
@@ -89,8 +92,10 @@ static_assert(kMaxPolygonVertices <= 127, "OverlapTopology holds edge indices in
 // built from it in a few operations instead of clipping A by every edge of B. When the check fails, or none is
 // known, A is clipped and the topology read off the result. Either way a two-crossing overlap is built from its
 // topology by the same arithmetic, so the result does not depend on what was passed in (bit for bit: restarts and
-// thread counts see the same contacts whatever the callers kept). On return: the topology of this overlap, or
-// unknown (no contact, or another shape).
+// thread counts see the same contacts whatever the callers kept). Likewise a pair found apart by an edge of B
+// keeps it: the next call first tests whether A still lies wholly outside that edge's line, by a margin, and
+// returns false at once (the clipping would reject it too). On return: the topology of this overlap, or unknown
+// (no contact, with the separating edge where one was seen, or another shape).
 bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out,
                     bool with_gradient = false, OverlapTopology* topology = nullptr);
 

@@ -300,6 +300,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   kept.a_last = in.ConsumeIntegralInRange<std::int8_t>(0, 20);
   kept.b_first = in.ConsumeIntegralInRange<std::int8_t>(0, 20);
   kept.b_last = in.ConsumeIntegralInRange<std::int8_t>(0, 20);
+  kept.a_apart = in.ConsumeIntegralInRange<std::int8_t>(-1, 20);
+  kept.b_apart = in.ConsumeIntegralInRange<std::int8_t>(-1, 20);
   const std::optional<Placed> a = place(*pa, at_a, yaw_a);
   const std::optional<Placed> b = place(*pb, at_b, yaw_b);
   if (a && b) check_pair(*a, *b, with_gradient, kept);
