@@ -21,8 +21,10 @@ struct ClipPolygon {
 };
 
 // The largest separation of the two polygons along their edges' outward normals (separating axes), and that axis,
-// pointing from A to B: > 0 is a lower bound of their distance, <= 0 minus the least penetration.
-double max_separation(std::span<const Vec2> a, std::span<const Vec2> b, Vec2& axis) {
+// pointing from A to B: > 0 is a lower bound of their distance, <= 0 minus the least penetration. `edge`: whose
+// edge gives it, numbered as the clipping numbers B's edges (edge j from [j - 1] to [j]); of A when `of_a`.
+double max_separation(std::span<const Vec2> a, std::span<const Vec2> b, Vec2& axis, int* edge = nullptr,
+                      bool* of_a = nullptr) {
   double best = -std::numeric_limits<double>::infinity();
   axis = Vec2{1.0, 0.0};
   auto scan = [&](std::span<const Vec2> s, std::span<const Vec2> t, double sign) {
@@ -37,6 +39,7 @@ double max_separation(std::span<const Vec2> a, std::span<const Vec2> b, Vec2& ax
       if (sep > best) {
         best = sep;
         axis = sign * u;
+        if (edge) *edge = static_cast<int>((i + 1) % n), *of_a = sign > 0.0;
       }
     }
   };
@@ -195,31 +198,15 @@ bool outside_edge(std::span<const Vec2> p, std::span<const Vec2> q, const Vec2& 
   return true;
 }
 
-// The edge (of A or of B, as outside_edge numbers them) along whose outward normal the two polygons are farthest
-// apart, into t.a_apart or t.b_apart, when that separation passes outside_edge's margin.
+// The edge (of A or of B) along whose outward normal the two polygons are farthest apart (max_separation), into
+// t.a_apart or t.b_apart, when the other polygon lies outside its line by outside_edge's margin.
 void find_apart_edge(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, OverlapTopology& t) {
-  auto best = [&](std::span<const Vec2> p, std::span<const Vec2> q, double& sep) {  // q's edge with p farthest out
-    const int nq = static_cast<int>(q.size());
-    int arg = -1;
-    for (int j = 0; j < nq; ++j) {
-      const EdgeLine l = b_edge(q, origin, j);
-      double lo = std::numeric_limits<double>::infinity();
-      for (const Vec2& x : p) lo = std::min(lo, l.nrm.dot(x - origin) - l.d);
-      if (const double s = lo / std::sqrt(l.e.squaredNorm()); s > sep) {
-        sep = s;
-        arg = j;
-      }
-    }
-    return arg;
-  };
-  double sep_b = -std::numeric_limits<double>::infinity(), sep_a = sep_b;
-  const int jb = best(a, b, sep_b), ja = best(b, a, sep_a);
-  if (sep_b >= sep_a ? jb >= 0 && outside_edge(a, b, origin, jb) : ja >= 0 && outside_edge(b, a, origin, ja)) {
-    if (sep_b >= sep_a)
-      t.b_apart = static_cast<std::int8_t>(jb);
-    else
-      t.a_apart = static_cast<std::int8_t>(ja);
-  }
+  Vec2 axis;
+  int edge = -1;
+  bool of_a = false;
+  if (!(max_separation(a, b, axis, &edge, &of_a) > 0.0) || edge < 0) return;
+  if (of_a ? outside_edge(b, a, origin, edge) : outside_edge(a, b, origin, edge))
+    (of_a ? t.a_apart : t.b_apart) = static_cast<std::int8_t>(edge);
 }
 
 }  // namespace

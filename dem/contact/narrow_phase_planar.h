@@ -71,7 +71,8 @@ double separation_lower_bound(std::span<const Vec2> a, std::span<const Vec2> b);
 // A's edge i runs from a[i] to a[i + 1]; B's edge j from b[j - 1] to b[j]. a_first < 0: none (a new pair, or an
 // overlap of another shape: containment, four or more crossings).
 // For a pair found apart: an edge whose line has all of the other polygon outside it (b_apart: an edge of B, with
-// A outside; a_apart: an edge of A, with B outside; -1: none), which the next call tests first.
+// A outside; a_apart: an edge of A, with B outside; edge j runs from vertex j - 1 to vertex j; -1: none), which the
+// next call tests first.
 struct OverlapTopology {
   std::int8_t a_first = -1, a_last = -1, b_first = -1, b_last = -1;
   std::int8_t a_apart = -1, b_apart = -1;
