@@ -93,9 +93,9 @@ static_assert(kMaxPolygonVertices <= 127, "OverlapTopology holds edge indices in
 // built from it in a few operations instead of clipping A by every edge of B. When the check fails, or none is
 // known, A is clipped and the topology read off the result. Either way a two-crossing overlap is built from its
 // topology by the same arithmetic, so the result does not depend on what was passed in (bit for bit: restarts and
-// thread counts see the same contacts whatever the callers kept). Likewise a pair found apart by an edge of B
-// keeps it: the next call first tests whether A still lies wholly outside that edge's line, by a margin, and
-// returns false at once (the clipping would reject it too). On return: the topology of this overlap, or unknown
+// thread counts see the same contacts whatever the callers kept). Likewise a pair found apart keeps an edge of
+// either polygon that shows it (a_apart, b_apart): the next call first tests whether the other polygon still lies
+// wholly outside that edge's line, by a margin, and returns false at once (the clipping would reject it too). On return: the topology of this overlap, or unknown
 // (no contact, with the separating edge where one was seen, or another shape).
 bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out,
                     bool with_gradient = false, OverlapTopology* topology = nullptr);

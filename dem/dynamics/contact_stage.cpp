@@ -341,6 +341,7 @@ void World::contact_forces(double dt) {
     r.reused = false;
     // Orient every pair by id so the stored spring has one meaning whatever the index order.
     int a = pairs_[p].a, b = pairs_[p].b;
+    const int entry = pairs_[p].entry;  // its neighbour-list entry: the kept topology and coefficients
     if (slot_static_[a].id > slot_static_[b].id) std::swap(a, b);
     const SlotStatic& A = slot_static_[a];
     const SlotStatic& B = slot_static_[b];
@@ -364,8 +365,7 @@ void World::contact_forces(double dt) {
       }
     } else {
       // The topology this listed pair's overlap had at its last contact (see planar_overlap), kept for the next.
-      const int e = pairs_[p].entry;
-      contact::OverlapTopology* topology = e >= 0 ? &skin_topo_[static_cast<std::size_t>(e)] : nullptr;
+      contact::OverlapTopology* topology = entry >= 0 ? &skin_topo_[static_cast<std::size_t>(entry)] : nullptr;
       if (!contact::planar_overlap(verts_a, verts_b, g, gradient, topology)) continue;
       r.reused = topology && topology->reused;
     }
@@ -396,8 +396,8 @@ void World::contact_forces(double dt) {
 
     const contact::PairKey key{A.id, B.id};
     // (symmetric in the two bodies, bit for bit: the list's order of the pair does not matter)
-    contact::PairCoefficients k = pairs_[p].entry >= 0 ? skin_coef_[static_cast<std::size_t>(pairs_[p].entry)]
-                                                       : law_.coefficients(A.radius, B.radius, A.mass, B.mass);
+    contact::PairCoefficients k = entry >= 0 ? skin_coef_[static_cast<std::size_t>(entry)]
+                                             : law_.coefficients(A.radius, B.radius, A.mass, B.mass);
     // Coulomb caps friction by the normal component of the contact force; in the gradient model that is
     // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
     // penetration).

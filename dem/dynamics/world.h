@@ -16,7 +16,6 @@
 #include "bonds/bond_set.h"
 #include "contact/broad_phase.h"
 #include "contact/contact_cache.h"
-#include "contact/narrow_phase_planar.h"
 #include "contact/contact_law.h"
 #include "contact/narrow_phase_gjk2d.h"
 #include "contact/narrow_phase_planar.h"
