@@ -46,11 +46,13 @@ bool World::skin_outrun() {
   if (skin_pos_.size() != size()) return true;
   const double half = 0.5 * skin_;
   const int n = static_cast<int>(size());
+  // By the build's slot, so that each thread writes its own stretch of skin_moved_ (no cache line shared).
   POLYFLOE_OMP_FOR(threads_)
-  for (int i = 0; i < n; ++i) {
+  for (int k = 0; k < n; ++k) {
+    const int i = skin_body_[k];
     // No vertex of body i has moved further than this since the build (a rotation by dθ moves a vertex at r by
     // 2 r sin(dθ/2) <= r |dθ|).
-    skin_moved_[static_cast<std::size_t>(skin_slot_[i])] =
+    skin_moved_[static_cast<std::size_t>(k)] =
         (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
   }
   bool outrun = false;
@@ -268,11 +270,14 @@ void World::sum_contacts(int n) {
       if (const double ratio = r.g.depth / limit; ratio > blk.deepest.ratio)
         blk.deepest = {ratio, r.g.depth, limit, A.body, B.body};
     }
-    for (int k = lo; k < hi; ++k) {
-      const int i = slots_[k].body;
-      force_[i] += slot_force_[k];
-      torque_[i] += slot_torque_[k];
-    }
+  }
+  // Into the bodies' sums, in body order: each thread writes its own stretch of force_ and torque_ (written by
+  // slot from the blocks, neighbouring bodies of different blocks would share cache lines).
+  POLYFLOE_OMP_FOR(threads_)
+  for (int i = 0; i < n; ++i) {
+    const int k = body_slot_[static_cast<std::size_t>(i)];
+    force_[i] += slot_force_[k];
+    torque_[i] += slot_torque_[k];
   }
   // The counts and extremes, block by block in order (the first of equals wins, as in one loop).
   contacts_.clear();
