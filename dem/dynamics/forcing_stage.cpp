@@ -22,9 +22,34 @@ struct FieldNow {
 
 }  // namespace
 
-void World::drift_forces(double t) {
+bool World::drift_from_linear_model(double dt) const {
   const forcing::DriftSettings& s = settings_.drift;
   const std::size_t n = size();
+  // A function of the step count alone (restarts keep it), and never on the first evaluation or after a change
+  // from outside (dt = 0: compute_forces anew).
+  return s.update_every > 1 && s.treatment == forcing::DriftTreatment::semi_implicit && dt > 0.0 &&
+         steps_ % static_cast<std::uint64_t>(s.update_every) != 0 && drift_load_.size() == n &&
+         lin_force_.size() == n && lin_torque_.size() == n;
+}
+
+void World::drift_forces(double t, bool linear) {
+  const forcing::DriftSettings& s = settings_.drift;
+  const std::size_t n = size();
+  if (linear) {
+    // Between full evaluations: the linear model F_d(v) = b - D v of the last one (b = lin_force_, lin_torque_;
+    // D and m f kept in drift_load_), at this step's predicted velocity.
+    const int n_int = static_cast<int>(n);
+    POLYFLOE_OMP_FOR(threads_)
+    for (int ii = 0; ii < n_int; ++ii) {
+      const std::size_t i = static_cast<std::size_t>(ii);
+      const forcing::DriftLoad& d = drift_load_[i];
+      if (!is_dynamic_[i] || !d.has_damping()) continue;
+      set_linear_drift_load(i, vel_eval_[i], omega_eval_[i]);
+      force_[i] += d.force;
+      torque_[i] += d.torque;
+    }
+    return;
+  }
   drift_load_.assign(n, forcing::DriftLoad{});
   if (!s.any()) return;
 

@@ -66,6 +66,13 @@ World::Vec3 World::implicit_velocity(std::size_t i, double dt) const {
                             inertia_[i] * omega_[i] + h * t_other + dt * lin_torque_[i]);
 }
 
+void World::set_linear_drift_load(std::size_t i, const Vec2& u, double w) {
+  forcing::DriftLoad& d = drift_load_[i];
+  const Eigen::Vector3d dv = d.damping_times(u, w);
+  d.force = lin_force_[i] - dv.head<2>();
+  d.torque = lin_torque_[i] - dv.z();
+}
+
 void World::kick_implicit(double dt) {
   const double h = 0.5 * dt;
   const int n = static_cast<int>(size());
@@ -84,9 +91,7 @@ void World::kick_implicit(double dt) {
     // The drift load at the new velocity (the linear model's), so force_ stays the total force.
     const Vec2 f_other = force_[i] - d.force;
     const double t_other = torque_[i] - d.torque;
-    const Eigen::Vector3d dv = d.damping_times(v.u, v.w);
-    d.force = lin_force_[i] - dv.head<2>();
-    d.torque = lin_torque_[i] - dv.z();
+    set_linear_drift_load(i, v.u, v.w);
     force_[i] = f_other + d.force;
     torque_[i] = t_other + d.torque;
   }

@@ -161,12 +161,18 @@ void World::compute_forces(double dt) {
     torque_[i] = ext_torque_[i];
   }
   auto t0 = clock::now();
-  drift_forces(time_ + dt);
+  const bool linear = drift_from_linear_model(dt);
+  drift_forces(time_ + dt, linear);
   auto t1 = clock::now();
   contact_forces(dt);
   profile_.forcing += std::chrono::duration<double>(t1 - t0).count();
   if (bonds_) bond_forces(time_ + dt);
-  // The linear model of the drift load in the body's velocity, F_d(v) = b - D v with b = F_d(v*) + D v*.
+  // The linear model of the drift load in the body's velocity, F_d(v) = b - D v with b = F_d(v*) + D v*; kept as
+  // it is where this step's loads came from it.
+  if (linear) {
+    forces_ready_ = true;
+    return;
+  }
   lin_force_.resize(n, Vec2{0.0, 0.0});  // bodies without drift damping keep 0 (never read)
   lin_torque_.resize(n, 0.0);
   POLYFLOE_OMP_FOR(threads_)

@@ -237,7 +237,12 @@ class World {
   void join_pair_chunks(int chunks);
   bool skin_outrun();
   void build_skin();
-  void drift_forces(double t);
+  // Whether this evaluation's drift loads come from the last full evaluation's linear model
+  // (DriftSettings::update_every).
+  bool drift_from_linear_model(double dt) const;
+  // Body i's drift load from the linear model at velocity (u, w): drift_load_[i].force, torque = b - D (u, w).
+  void set_linear_drift_load(std::size_t i, const Vec2& u, double w);
+  void drift_forces(double t, bool linear);
   void bond_forces(double t);
 
   WorldSettings settings_;

@@ -54,6 +54,9 @@ struct DriftSettings {
   bool beta_plane = false;                 // beta = 2 Omega cos(latitude) / R_earth
   double reference_y = 0.0;                // y where f = f0 [m]
   DriftTreatment treatment = DriftTreatment::semi_implicit;
+  // The loads are evaluated in full every `update_every` steps [-]; between, each body's drift load comes from the
+  // linear model of the last full evaluation, F_d(v) = b - D v (semi-implicit treatment only; 1 = every step).
+  int update_every = 1;
 
   bool any() const { return form_drag || moment_drag || skin_drag || air_drag || coriolis; }
   // Every term off (contact-only tests and scenes).

@@ -153,6 +153,13 @@ void read_forcing(MapReader m, Scene& s) {
   m.choice("treatment", d.treatment,
            {{"semi_implicit", forcing::DriftTreatment::semi_implicit},
             {"explicit", forcing::DriftTreatment::explicit_step}});
+  if (const auto f = m.take("update_every")) {
+    d.update_every = static_cast<int>(to_integer(m.context(), *f, 1, 1000));
+    if (d.update_every > 1 && d.treatment != forcing::DriftTreatment::semi_implicit)
+      m.context().fail(*f, "update_every = " + std::to_string(d.update_every) +
+                               " needs forcing.treatment: semi_implicit (the steps between full evaluations use its "
+                               "linear model); use 1 with treatment: explicit");
+  }
   m.choice("quadrature", d.quadrature,
            {{"centroid", forcing::Quadrature::centroid},
             {"degree1", forcing::Quadrature::degree1},

@@ -113,6 +113,7 @@ std::string resolved_yaml(const Scene& s) {
     o << "forcing:\n"
       << "  treatment: " << forcing::to_string(d.treatment) << "  # drag and Coriolis in the step\n"
       << "  quadrature: " << forcing::to_string(d.quadrature) << "  # bottom and top drag integrals\n"
+      << "  update_every: " << d.update_every << "  # [-] steps per full drift evaluation (between: its linear model)\n"
       << "  ocean:\n"
       << "    density: " << fmt(d.water_density) << "  # [kg/m^3]\n"
       << "    field: " << field_yaml(s.ocean_field) << "  # [m], [m/s], [1/s], [s]\n"

@@ -94,6 +94,7 @@ inline void expect_same_settings(const Scene& a, const Scene& b) {
   EXPECT_EQ(da.air_drag_coefficient, db.air_drag_coefficient);
   EXPECT_EQ(da.quadrature, db.quadrature);
   EXPECT_EQ(da.treatment, db.treatment);
+  EXPECT_EQ(da.update_every, db.update_every);
   EXPECT_EQ(da.coriolis, db.coriolis);
   EXPECT_EQ(da.latitude, db.latitude);
   EXPECT_EQ(da.beta_plane, db.beta_plane);

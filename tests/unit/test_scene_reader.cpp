@@ -484,6 +484,11 @@ TEST(SceneErrors, ForcingBlock) {
                           "with outside: error")) << m;
   m = parse_error(one + "forcing: {quadrature: degree3}\n");
   EXPECT_TRUE(contains(m, "expected one of centroid, degree1, degree2, degree4, degree5, got 'degree3'")) << m;
+  m = parse_error(one + "forcing: {update_every: 0}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.update_every'")) << m;
+  EXPECT_TRUE(contains(m, "[1, 1000]")) << m;
+  m = parse_error(one + "forcing: {treatment: explicit, update_every: 8}\n");
+  EXPECT_TRUE(contains(m, "key 'forcing.update_every': update_every = 8 needs forcing.treatment: semi_implicit")) << m;
   m = parse_error(one + "forcing: {coriolis: {latitude: 91}}\n");
   EXPECT_TRUE(contains(m, "key 'forcing.coriolis.latitude': 91 is outside the allowed range [-90, 90] [deg]")) << m;
   m = parse_error(one + "forcing: {ocean: {form_drag: {coefficient: -0.1}}}\n");
