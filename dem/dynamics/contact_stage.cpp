@@ -33,7 +33,7 @@ void World::grid_pairs(std::span<const geometry::Aabb> boxes) {
   const std::size_t tiles = broad_.tile_count();
   const int chunks = static_cast<int>(std::min<std::size_t>(tiles, 8 * static_cast<std::size_t>(threads_)));
   pair_chunks_.resize(static_cast<std::size_t>(std::max(chunks, 1)));
-  POLYFLOE_OMP_FOR_DYNAMIC(threads_)
+  POLYFLOE_OMP_FOR(threads_)
   for (int c = 0; c < chunks; ++c) {
     std::vector<contact::CandidatePair>& out = pair_chunks_[static_cast<std::size_t>(c)];
     out.clear();
@@ -134,7 +134,7 @@ void World::candidate_pairs() {
   const int n = static_cast<int>(size());
   const int chunks = threads_ == 1 ? 1 : std::min(n, 8 * threads_);
   pair_chunks_.resize(static_cast<std::size_t>(std::max(chunks, 1)));
-  POLYFLOE_OMP_FOR_DYNAMIC(threads_)
+  POLYFLOE_OMP_FOR(threads_)
   for (int c = 0; c < chunks; ++c) {
     std::vector<contact::CandidatePair>& out = pair_chunks_[static_cast<std::size_t>(c)];
     out.clear();
@@ -203,7 +203,7 @@ void World::sum_contacts(int n) {
         pairs_.begin());
   }
   auto last_pair = [&](int c) { return c + 1 < blocks ? sum_blocks_[c + 1].first_pair : pairs_.size(); };
-  POLYFLOE_OMP_FOR_DYNAMIC(threads_)
+  POLYFLOE_OMP_FOR(threads_)
   for (int c = 0; c < blocks; ++c) {
     SumBlock& blk = sum_blocks_[c];
     blk.spilled.clear();
@@ -223,7 +223,7 @@ void World::sum_contacts(int n) {
   const std::span<std::pair<contact::PairKey, double>> stores = cache_.store_slots(hits);
   slot_force_.resize(static_cast<std::size_t>(n));
   slot_torque_.resize(static_cast<std::size_t>(n));
-  POLYFLOE_OMP_FOR_DYNAMIC(threads_)
+  POLYFLOE_OMP_FOR(threads_)
   for (int c = 0; c < blocks; ++c) {
     SumBlock& blk = sum_blocks_[c];
     const int lo = first_slot(c), hi = first_slot(c + 1);

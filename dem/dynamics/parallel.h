@@ -5,17 +5,17 @@
 #ifdef _OPENMP
 #include <omp.h>
 #define POLYFLOE_PRAGMA(x) _Pragma(#x)
-// A parallel loop over independent iterations with `threads` threads, static chunks of 256 (iterations are cheap;
-// the partition does not change any result).
-#define POLYFLOE_OMP_FOR(threads) POLYFLOE_PRAGMA(omp parallel for schedule(static, 256) num_threads(threads) if (threads > 1))
-// The same over a few uneven iterations (chunks of work), handed out one at a time.
-#define POLYFLOE_OMP_FOR_DYNAMIC(threads) POLYFLOE_PRAGMA(omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1))
+// A parallel loop over independent iterations with `threads` threads, each thread taking one contiguous stretch
+// (the partition does not change any result). Every loop over the bodies, the slots or blocks of slots cuts the
+// same way, so a thread mostly reads what it wrote in the loop before: at a thousand floes a loop lasts a few
+// microseconds, and data fetched from the other core's cache, or chunks handed out one at a time, cost as much
+// again (docs/performance.md, "Two threads at a thousand floes").
+#define POLYFLOE_OMP_FOR(threads) POLYFLOE_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (threads > 1))
 inline int polyfloe_thread_index() { return omp_get_thread_num(); }
 // Threads a run uses unless told: what OpenMP would use (the cores, or OMP_NUM_THREADS).
 inline int polyfloe_default_threads() { return omp_get_max_threads(); }
 #else
 #define POLYFLOE_OMP_FOR(threads)
-#define POLYFLOE_OMP_FOR_DYNAMIC(threads)
 inline int polyfloe_thread_index() { return 0; }
 inline int polyfloe_default_threads() { return 1; }
 #endif
