@@ -473,12 +473,14 @@ void VtkSeriesWriter::write_frame(const dynamics::World& world) {
 
 void VtkSeriesWriter::resume(std::span<const double> frame_times, bool bonds) {
   const int frames = static_cast<int>(frame_times.size());
-  remove_frames_from(dir_, "floes", ".vtp", frames);
-  remove_frames_from(dir_, "contacts", ".vtp", frames);
-  remove_frames_from(dir_, "bonds", ".vtp", frames);
+  // The collections first, then the frames they no longer list: a kill between the two leaves unlisted files,
+  // never a collection that lists a missing one.
   floes_pvd_.resume(frame_times, "floes", ".vtp");
   if (write_contacts_) contacts_pvd_.resume(frame_times, "contacts", ".vtp");
   if (bonds) bonds_pvd_.resume(frame_times, "bonds", ".vtp");
+  remove_frames_from(dir_, "floes", ".vtp", frames);
+  remove_frames_from(dir_, "contacts", ".vtp", frames);
+  remove_frames_from(dir_, "bonds", ".vtp", frames);
   frames_ = frames;
 }
 
@@ -521,8 +523,8 @@ void VtkImageSeriesWriter::write_frame(double time, std::uint64_t step, std::spa
 
 void VtkImageSeriesWriter::resume(std::span<const double> frame_times) {
   const int frames = static_cast<int>(frame_times.size());
+  pvd_.resume(frame_times, stem_, ".vti");  // as above: the collection before the frames it drops
   remove_frames_from(dir_, stem_, ".vti", frames);
-  pvd_.resume(frame_times, stem_, ".vti");
   frames_ = frames;
 }
 
