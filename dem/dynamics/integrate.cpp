@@ -76,25 +76,68 @@ void World::set_linear_drift_load(std::size_t i, const Vec2& u, double w) {
 void World::kick_implicit(double dt) {
   const double h = 0.5 * dt;
   const int n = static_cast<int>(size());
+  // By blocks of bodies, each adding its bodies' motion to its share of the run guard's summary as it goes.
+  const int blocks = (n + kSummaryBlock - 1) / kSummaryBlock;
+  motion_blocks_.resize(static_cast<std::size_t>(blocks));
   POLYFLOE_OMP_FOR(threads_)
-  for (int ii = 0; ii < n; ++ii) {
-    const std::size_t i = static_cast<std::size_t>(ii);
-    forcing::DriftLoad& d = drift_load_[i];  // with lin_force_, set by compute_forces()
-    if (!is_dynamic_[i] || !d.has_damping()) {
-      vel_[i] += (h * inv_mass_[i]) * force_[i];
-      omega_[i] += h * inv_inertia_[i] * torque_[i];
-      continue;
+  for (int blk = 0; blk < blocks; ++blk) {
+    MotionSummary sum;
+    for (int ii = blk * kSummaryBlock, end = std::min(n, ii + kSummaryBlock); ii < end; ++ii) {
+      const std::size_t i = static_cast<std::size_t>(ii);
+      forcing::DriftLoad& d = drift_load_[i];  // with lin_force_, set by compute_forces()
+      if (!is_dynamic_[i] || !d.has_damping()) {
+        vel_[i] += (h * inv_mass_[i]) * force_[i];
+        omega_[i] += h * inv_inertia_[i] * torque_[i];
+      } else {
+        const Vec3 v = implicit_velocity(i, dt);
+        vel_[i] = v.u;
+        omega_[i] = v.w;
+        // The drift load at the new velocity (the linear model's), so force_ stays the total force.
+        const Vec2 f_other = force_[i] - d.force;
+        const double t_other = torque_[i] - d.torque;
+        set_linear_drift_load(i, v.u, v.w);
+        force_[i] = f_other + d.force;
+        torque_[i] = t_other + d.torque;
+      }
+      add_motion(i, sum);
     }
-    const Vec3 v = implicit_velocity(i, dt);
-    vel_[i] = v.u;
-    omega_[i] = v.w;
-    // The drift load at the new velocity (the linear model's), so force_ stays the total force.
-    const Vec2 f_other = force_[i] - d.force;
-    const double t_other = torque_[i] - d.torque;
-    set_linear_drift_load(i, v.u, v.w);
-    force_[i] = f_other + d.force;
-    torque_[i] = t_other + d.torque;
+    motion_blocks_[static_cast<std::size_t>(blk)] = sum;
   }
+  summary_ = MotionSummary{};
+  for (const MotionSummary& b : motion_blocks_) summary_.merge(b);
+  summary_ready_ = true;
+}
+
+void World::add_motion(std::size_t i, MotionSummary& s) const {
+  // A NaN or infinity anywhere in the pose or the velocity makes the sum non-finite.
+  s.all_finite &= std::isfinite(pos_[i].x() + pos_[i].y() + yaw_[i] + vel_[i].x() + vel_[i].y() + omega_[i]);
+  if (!is_dynamic_[i]) return;
+  const double v2 = vel_[i].squaredNorm();
+  s.max_speed2 = std::max(s.max_speed2, v2);
+  s.max_spin_speed = std::max(s.max_spin_speed, std::abs(omega_[i]) * reach_[i]);
+  s.energy += 0.5 * mass_[i] * v2 + 0.5 * inertia_[i] * omega_[i] * omega_[i];
+}
+
+void World::MotionSummary::merge(const MotionSummary& o) {
+  all_finite &= o.all_finite;
+  max_speed2 = std::max(max_speed2, o.max_speed2);
+  max_spin_speed = std::max(max_spin_speed, o.max_spin_speed);
+  energy += o.energy;
+}
+
+const World::MotionSummary& World::motion_summary() const {
+  if (!summary_ready_) {
+    // The same blocks as the final kick's, so that the sum has the same bits.
+    summary_ = MotionSummary{};
+    const std::size_t n = size();
+    for (std::size_t b0 = 0; b0 < n; b0 += kSummaryBlock) {
+      MotionSummary sum;
+      for (std::size_t i = b0; i < std::min(n, b0 + kSummaryBlock); ++i) add_motion(i, sum);
+      summary_.merge(sum);
+    }
+    summary_ready_ = true;
+  }
+  return summary_;
 }
 
 void World::update_shape(int i) {

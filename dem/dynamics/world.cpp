@@ -55,6 +55,8 @@ int World::add_body(const BodyDesc& d) {
   radius_.push_back(dyn ? d.shape->equivalent_radius() : contact::kInfinite);
   motion_.push_back(d.motion);
   is_dynamic_.push_back(dyn ? 1 : 0);
+  if (dyn) dynamic_mass_ += mass_.back();
+  summary_ready_ = false;
   pos_.push_back(d.position);
   yaw_.push_back(d.yaw);
   vel_.push_back(d.motion == Motion::fixed ? Vec2{0.0, 0.0} : d.velocity);
@@ -105,6 +107,7 @@ void World::set_velocity(int i, const Vec2& v, double omega) {
   vel_[i] = v;
   omega_[i] = omega;
   forces_ready_ = false;
+  summary_ready_ = false;
 }
 
 void World::set_external_load(int i, const Vec2& force, double torque) {
@@ -324,6 +327,7 @@ void World::restore(const WorldState& s) {
   worst_a_ = worst_b_ = -1;
   update_shapes();
   forces_ready_ = s.forces_ready;
+  summary_ready_ = false;
 }
 
 }  // namespace polyfloe::dynamics

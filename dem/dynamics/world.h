@@ -186,6 +186,19 @@ class World {
   double angular_momentum() const;           // about the origin, z [kg m^2/s]
   double max_speed() const;                  // [m/s]
 
+  // The bodies' motion at the end of the last step, for the run guard (run/simulation.h): gathered in the final
+  // kick's loop (no pass of its own), or anew when asked for after a change from outside (add_body, set_velocity,
+  // restore). The energy is summed in fixed blocks of bodies, so any thread count gives the same bits.
+  struct MotionSummary {
+    bool all_finite = true;       // every body's position, yaw, velocity and angular velocity
+    double max_speed2 = 0.0;      // the largest |v|^2 of a dynamic body [m^2/s^2]
+    double max_spin_speed = 0.0;  // the largest |omega| x circumradius of a dynamic body [m/s]
+    double energy = 0.0;          // kinetic energy of the dynamic bodies, translation + rotation [J]
+    void merge(const MotionSummary& o);
+  };
+  const MotionSummary& motion_summary() const;
+  double dynamic_mass() const { return dynamic_mass_; }  // [kg], summed in body order
+
   // Duration of the shortest Hertz impact between the bodies present (smallest dynamic mass and radius) at
   // `speed` [m/s]; the time step is a fraction of it [s].
   double shortest_contact_duration(double speed) const;
@@ -208,6 +221,8 @@ class World {
 
  private:
   void kick_and_drift(double dt);  // the first half kick, then the positions over the whole step
+  void add_motion(std::size_t i, MotionSummary& s) const;  // body i's share of the motion summary
+  static constexpr int kSummaryBlock = 64;                 // bodies per block of the motion summary's sums
   void kick_implicit(double dt);
   struct Vec3 {
     Vec2 u;
@@ -348,6 +363,10 @@ class World {
   mutable bool contacts_ready_ = true;
   std::size_t contact_count_ = 0;
   DeepestOverlap deepest_;
+  double dynamic_mass_ = 0.0;                 // [kg]
+  mutable MotionSummary summary_;             // see motion_summary()
+  mutable bool summary_ready_ = false;
+  std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
   // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
   struct PairResult {
     bool hit = false;

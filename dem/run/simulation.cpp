@@ -102,13 +102,37 @@ void check_contact_resolution(const dynamics::World& w, double dt) {
   }
 }
 
+namespace {
+
+void check_deepest_overlap(const dynamics::World& w, double dt) {
+  // The deepest overlap against half the smaller floe's radius (tracked by the World in its contact sum).
+  if (const dynamics::World::DeepestOverlap& c = w.deepest_overlap(); c.ratio > 1.0) {
+    std::ostringstream why;
+    why << "bodies " << w.id(c.a) << " and " << w.id(c.b) << " overlap by " << c.depth
+        << " m (more than half the smaller floe's radius, " << c.limit << " m) at t = " << w.time() << " s (step "
+        << w.step_count() << "). The contact is too soft or the time step too large for the impact speeds: set "
+        << "run.dt to " << 0.25 * dt << ", or raise run.reference_speed or run.steps_per_contact.";
+    throw InstabilityError(why.str());
+  }
+}
+
+}  // namespace
+
 void check_stability(const dynamics::World& w, double dt, double reference_speed) {
   check_contact_resolution(w, dt);
+  // Runaway: far faster than anything the forcing or the impacts can produce.
+  const double speed_limit = std::max(50.0, 20.0 * reference_speed);
+  const double energy_limit = 0.5 * w.dynamic_mass() * 100.0 * std::max(1.0, reference_speed) * std::max(1.0, reference_speed);
+  // The World's summary of the step (gathered in its final kick) clears the bodies at once; only a state it
+  // cannot clear is searched body by body below, for the body to name (and decides by itself).
+  if (const dynamics::World::MotionSummary& s = w.motion_summary();
+      s.all_finite && std::sqrt(s.max_speed2) + s.max_spin_speed <= speed_limit && s.energy <= energy_limit) {
+    check_deepest_overlap(w, dt);
+    return;
+  }
   const auto pos = w.positions();
   const auto vel = w.velocities();
   const auto om = w.angular_velocities();
-  // Runaway: far faster than anything the forcing or the impacts can produce.
-  const double speed_limit = std::max(50.0, 20.0 * reference_speed);
   std::ostringstream why;
   auto advice = [&] {
     why << " at t = " << w.time() << " s (step " << w.step_count() << "). The time step dt = " << dt
@@ -118,7 +142,7 @@ void check_stability(const dynamics::World& w, double dt, double reference_speed
   };
   // Runaway energy: the kinetic energy of the dynamic bodies beyond what they would have all moving at 10 x the
   // reference speed (an instability that grows in many bodies at once, before any one reaches the speed limit).
-  double energy = 0.0, mass = 0.0, worst = 0.0;
+  double energy = 0.0, worst = 0.0;
   std::size_t worst_body = 0;
   for (std::size_t i = 0; i < w.size(); ++i) {
     const int b = static_cast<int>(i);
@@ -135,7 +159,6 @@ void check_stability(const dynamics::World& w, double dt, double reference_speed
       if (dynamic) {
         const double e = 0.5 * w.mass(b) * vel[i].squaredNorm() + 0.5 * w.inertia(b) * om[i] * om[i];
         energy += e;
-        mass += w.mass(b);
         if (e > worst) {
           worst = e;
           worst_body = i;
@@ -145,21 +168,13 @@ void check_stability(const dynamics::World& w, double dt, double reference_speed
     }
     advice();
   }
-  const double energy_limit = 0.5 * mass * 100.0 * std::max(1.0, reference_speed) * std::max(1.0, reference_speed);
   if (energy > energy_limit) {
     why << "the kinetic energy of the ice, " << energy << " J, exceeds " << energy_limit
         << " J (every floe at 10 x the reference speed; the most energetic is body " << w.id(static_cast<int>(worst_body))
         << " with " << worst << " J): runaway energy";
     advice();
   }
-  // The deepest overlap against half the smaller floe's radius (tracked by the World in its contact sum).
-  if (const dynamics::World::DeepestOverlap& c = w.deepest_overlap(); c.ratio > 1.0) {
-    why << "bodies " << w.id(c.a) << " and " << w.id(c.b) << " overlap by " << c.depth
-        << " m (more than half the smaller floe's radius, " << c.limit << " m) at t = " << w.time() << " s (step "
-        << w.step_count() << "). The contact is too soft or the time step too large for the impact speeds: set "
-        << "run.dt to " << 0.25 * dt << ", or raise run.reference_speed or run.steps_per_contact.";
-    throw InstabilityError(why.str());
-  }
+  check_deepest_overlap(w, dt);
 }
 
 namespace {

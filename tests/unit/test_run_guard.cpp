@@ -152,3 +152,48 @@ TEST(RunGuard, OverlapDeeperThanHalfTheSmallerRadiusNamesThePair) {
   // The records, listed on demand, agree with the count.
   EXPECT_EQ(w.contacts().size(), 2u);
 }
+
+TEST(RunGuard, TheStepsMotionSummaryAgreesWithTheBodies) {
+  // The guard clears a step from the summary the final kick gathers (World::motion_summary). Against each body's
+  // own figures: 60 floes, some spinning and some colliding, one kinematic one faster than all (left out), stepped
+  // on 1 and on 2 threads: the same bits on both, the largest speed and spin exactly, the energy to round-off.
+  auto make = [](int threads) {
+    dynamics::World w = floes(60, {0.5, 0.0});
+    for (int i = 0; i < 60; i += 7) w.set_velocity(i, {-4.5, 0.25}, 0.05 * i);
+    const auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(4, 4));
+    w.add_body({.id = 999, .shape = sq, .position = {0.0, 50.0}, .velocity = {30.0, 0.0},
+                .motion = dynamics::Motion::kinematic});
+    w.set_threads(threads);
+    std::size_t contacts = 0;
+    for (int s = 0; s < 3000; ++s) {
+      w.step(1e-3);
+      contacts += w.contact_count();
+    }
+    EXPECT_GT(contacts, 0u) << "the floes were meant to collide";
+    return w;
+  };
+  const dynamics::World one = make(1), two = make(2);
+  const dynamics::World::MotionSummary &a = one.motion_summary(), &b = two.motion_summary();
+  EXPECT_TRUE(a.all_finite);
+  EXPECT_EQ(std::memcmp(&a.energy, &b.energy, sizeof a.energy), 0);
+  EXPECT_EQ(a.max_speed2, b.max_speed2);
+  EXPECT_EQ(a.max_spin_speed, b.max_spin_speed);
+  double v2 = 0.0, spin = 0.0;
+  for (int i = 0; i < static_cast<int>(one.size()); ++i) {
+    if (one.motion(i) != dynamics::Motion::dynamic) continue;
+    v2 = std::max(v2, one.velocities()[i].squaredNorm());
+    spin = std::max(spin, std::abs(one.angular_velocities()[i]) * one.shape(i).circumradius());
+  }
+  EXPECT_EQ(a.max_speed2, v2);
+  EXPECT_EQ(a.max_spin_speed, spin);
+  EXPECT_GT(spin, 0.0);
+  EXPECT_NEAR(a.energy, one.kinetic_energy(), 1e-12 * one.kinetic_energy());
+  EXPECT_EQ(guard_message(one, 1e-3, 1.0), "");
+
+  // A change from outside is seen: the summary is gathered anew, and the guard names the body.
+  dynamics::World w = make(2);
+  w.set_velocity(31, {0.0, std::numeric_limits<double>::infinity()}, 0.0);
+  EXPECT_FALSE(w.motion_summary().all_finite);
+  const std::string m = guard_message(w, 1e-3, 1.0);
+  EXPECT_NE(m.find("body 131 has a non-finite state"), std::string::npos) << m;
+}
