@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "dynamics/parallel.h"
+#include "geometry/space_order.h"
 #include "dynamics/world.h"
 
 namespace polyfloe::dynamics {
@@ -157,23 +158,7 @@ void World::update_shape(int i) {
 
 namespace {
 
-// The cell of a position on a grid of `cell` [m] anchored at the origin, numbered tile by tile as the broad phase
-// numbers its cells (kTile x kTile cells per tile; row-major inside a tile and between tiles). A non-finite
-// position (a body that blew up; the run guard reports it) sorts last.
-constexpr int kTileBits = 4;
-static_assert(contact::GridBroadPhase::kTile == 1 << kTileBits, "slots and the broad phase share their tiles");
-
-std::uint64_t slot_key(const Vec2& p, double cell) {
-  const double inv = 1.0 / cell;
-  const double x = std::floor(p.x() * inv), y = std::floor(p.y() * inv);
-  constexpr double lim = 2147483647.0;
-  if (!(std::abs(x) < lim) || !(std::abs(y) < lim)) return ~std::uint64_t{0};
-  const auto ux = static_cast<std::uint64_t>(static_cast<std::int64_t>(x) + 2147483648LL);  // < 2^32
-  const auto uy = static_cast<std::uint64_t>(static_cast<std::int64_t>(y) + 2147483648LL);
-  constexpr std::uint64_t in_tile = (1u << kTileBits) - 1;
-  return ((uy >> kTileBits) << (32 + kTileBits)) | ((ux >> kTileBits) << (2 * kTileBits)) |
-         ((uy & in_tile) << kTileBits) | (ux & in_tile);
-}
+static_assert(contact::GridBroadPhase::kTile == geometry::kSpaceTile, "slots and the broad phase share their tiles");
 
 bool slot_less(const auto& a, const auto& b) { return a.key != b.key ? a.key < b.key : a.body < b.body; }
 
@@ -182,7 +167,7 @@ bool slot_less(const auto& a, const auto& b) { return a.key != b.key ? a.key < b
 void World::sort_slots() {
   const int n = static_cast<int>(slots_.size());
   POLYFLOE_OMP_FOR(threads_)
-  for (int k = 0; k < n; ++k) slots_[k].key = slot_key(pos_[slots_[k].body], order_cell_);
+  for (int k = 0; k < n; ++k) slots_[k].key = geometry::space_key(pos_[slots_[k].body], order_cell_);
   // Insertion sort from the last order: floes that keep their neighbours make it O(N). Past a budget of moves
   // (bodies crossing many others, or the first sort) a full sort; both give the one order sorted by (key, body).
   // Each move permutes the slots of an interval among themselves; overlapping intervals are merged, so that each

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/space_order.h"
 #include "scene/floe_field.h"
 #include "scene/scene_reader.h"
 #include "scene_test_support.h"
@@ -66,6 +67,33 @@ TEST(BuildWorld, MoreStepsThanARunMayTakeIsAnError) {
   EXPECT_EQ(time_step(s, w), 1e-3);
 }
 
+// The generated floes, bodies first..size()-1: their ids are first, first + 1, ... numbered largest first (the
+// generator's), and they are stored in space order (geometry::space_key on cells of 4 x their mean equivalent
+// radius, as the World sorts its slots).
+void expect_field_in_space_order(const dynamics::World& w, int first) {
+  const int n = static_cast<int>(w.size());
+  ASSERT_GT(n - first, 10);
+  std::vector<int> by_id(static_cast<std::size_t>(n - first), -1);
+  double radius_sum = 0.0;
+  for (int i = first; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(w.id(i)) - static_cast<std::size_t>(first);
+    ASSERT_LT(k, by_id.size()) << "body " << i << " has id " << w.id(i);
+    EXPECT_EQ(by_id[k], -1) << "id " << w.id(i) << " twice";
+    by_id[k] = i;
+    radius_sum += w.shape(i).equivalent_radius();
+  }
+  for (std::size_t k = 1; k < by_id.size(); ++k)
+    EXPECT_LE(w.shape(by_id[k]).area(), w.shape(by_id[k - 1]).area() * (1.0 + 1e-12)) << "ids not largest first";
+  const double cell = 4.0 * radius_sum / (n - first);
+  std::size_t out_of_order = 0, moved = 0;
+  for (int i = first + 1; i < n; ++i) {
+    out_of_order += geometry::space_key(w.positions()[i], cell) < geometry::space_key(w.positions()[i - 1], cell);
+    moved += w.id(i) != static_cast<dynamics::BodyId>(i);
+  }
+  EXPECT_EQ(out_of_order, 0u);
+  EXPECT_GT(moved, static_cast<std::size_t>(n - first) / 2) << "the space order should differ from the size order";
+}
+
 TEST(BuildWorld, ChannelSceneIdsWallsAndField) {
   const Scene s = read_scene(kSceneDir + "channel.yaml", {});
   const double v = forcing::free_drift_velocity(s.world.drift, s.ocean_field.velocity, s.wind_field.velocity).norm();
@@ -78,10 +106,8 @@ TEST(BuildWorld, ChannelSceneIdsWallsAndField) {
     EXPECT_EQ(w.id(i), static_cast<dynamics::BodyId>(i));
     EXPECT_EQ(w.motion(i), dynamics::Motion::fixed);
   }
-  for (int i = 6; i < static_cast<int>(w.size()); ++i) {
-    EXPECT_EQ(w.id(i), static_cast<dynamics::BodyId>(i));
-    EXPECT_EQ(w.motion(i), dynamics::Motion::dynamic);
-  }
+  for (int i = 6; i < static_cast<int>(w.size()); ++i) EXPECT_EQ(w.motion(i), dynamics::Motion::dynamic);
+  expect_field_in_space_order(w, 6);
   EXPECT_GT(time_step(s, w), 0.0);
 }
 
@@ -142,8 +168,8 @@ TEST(BuildWorld, GeneratedFloesAvoidExplicitBodiesAndComeLast) {
   const dynamics::World w = build_world(s);
   ASSERT_GT(w.size(), 10u);
   const std::vector<Vec2> island_world(w.world_vertices(0).begin(), w.world_vertices(0).end());
+  expect_field_in_space_order(w, 1);
   for (int i = 1; i < static_cast<int>(w.size()); ++i) {
-    EXPECT_EQ(w.id(i), static_cast<dynamics::BodyId>(i));
     const std::vector<Vec2> v(w.world_vertices(i).begin(), w.world_vertices(i).end());
     EXPECT_GT(polygon_separation(v, island_world), 0.0) << i;
   }
