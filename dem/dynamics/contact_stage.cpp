@@ -46,17 +46,17 @@ bool World::skin_outrun() {
   if (skin_pos_.size() != size()) return true;
   const double half = 0.5 * skin_;
   const int n = static_cast<int>(size());
+  bool outrun = false;
   // By the build's slot, so that each thread writes its own stretch of skin_moved_ (no cache line shared).
-  POLYFLOE_OMP_FOR(threads_)
+  POLYFLOE_OMP_FOR_ANY(threads_, outrun)
   for (int k = 0; k < n; ++k) {
     const int i = skin_body_[k];
     // No vertex of body i has moved further than this since the build (a rotation by dθ moves a vertex at r by
     // 2 r sin(dθ/2) <= r |dθ|).
-    skin_moved_[static_cast<std::size_t>(k)] =
-        (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
+    const double moved = (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
+    skin_moved_[static_cast<std::size_t>(k)] = moved;
+    outrun = outrun || !(moved <= half);  // NaN counts as too far
   }
-  bool outrun = false;
-  for (const double moved : skin_moved_) outrun |= !(moved <= half);  // NaN counts as too far
   return outrun;
 }
 
@@ -120,6 +120,7 @@ void World::build_skin() {
   skin_topo_.assign(skin_adj_.size(), contact::OverlapTopology{});
   skin_pos_ = pos_;
   skin_yaw_ = yaw_;
+  slots_moved_ = false;
   skin_moved_.assign(static_cast<std::size_t>(n), 0.0);
   ++skin_builds_;
 }
@@ -165,9 +166,11 @@ void World::candidate_pairs() {
     out.resize(m);
   }
   join_pair_chunks(chunks);
-  // Sorted as built; slots that swapped since move a few pairs out of order: an insertion sort puts them back,
+  // Sorted as built, while no slot has changed bodies since the build (the pairs of each slot in its list's order,
+  // the slots in order). Slots that swapped since move a few pairs out of order: an insertion sort puts them back,
   // and past a budget of moves (bodies that crossed many others, or the slots sorted anew since the build) a full
   // sort, and the lists are rebuilt next time. Both give the one sorted order.
+  if (!slots_moved_) return;
   std::size_t moves = 0;
   const std::size_t budget = 4 * pairs_.size() + 64;
   for (std::size_t u = 1; u < pairs_.size() && moves <= budget; ++u) {

@@ -166,13 +166,19 @@ bool slot_less(const auto& a, const auto& b) { return a.key != b.key ? a.key < b
 
 void World::sort_slots() {
   const int n = static_cast<int>(slots_.size());
-  POLYFLOE_OMP_FOR(threads_)
-  for (int k = 0; k < n; ++k) slots_[k].key = geometry::space_key(pos_[slots_[k].body], order_cell_);
+  bool changed = false;
+  POLYFLOE_OMP_FOR_ANY(threads_, changed)
+  for (int k = 0; k < n; ++k) {
+    const std::uint64_t key = geometry::space_key(pos_[slots_[k].body], order_cell_);
+    changed = changed || key != slots_[k].key;
+    slots_[k].key = key;
+  }
+  moved_.clear();
+  if (!changed) return;  // sorted by (key, body) as before: nothing moves (most steps)
   // Insertion sort from the last order: floes that keep their neighbours make it O(N). Past a budget of moves
   // (bodies crossing many others, or the first sort) a full sort; both give the one order sorted by (key, body).
   // Each move permutes the slots of an interval among themselves; overlapping intervals are merged, so that each
   // recorded interval holds the same bodies as before, whose vertices filled one block of world_xy_.
-  moved_.clear();
   std::size_t moves = 0;
   const std::size_t budget = 8 * static_cast<std::size_t>(n) + 64;
   for (int k = 1; k < n && moves <= budget; ++k) {
@@ -193,6 +199,7 @@ void World::sort_slots() {
     std::sort(slots_.begin(), slots_.end(), [](const SlotKey& a, const SlotKey& b) { return slot_less(a, b); });
     moved_.assign(1, {0, n - 1});
   }
+  slots_moved_ = slots_moved_ || !moved_.empty();
   // New layout of each moved interval: slot data and the bodies' places in their block of world_xy_ follow the
   // slot order; the fixed bodies there are redrawn (the others are every step).
   for (const auto& [first, last] : moved_) {

@@ -329,6 +329,7 @@ class World {
   std::vector<SlotKey> slots_;      // slot -> body, sorted by (key, body)
   std::vector<int> body_slot_;      // body -> slot
   std::vector<std::pair<int, int>> moved_;  // slot intervals [first, last] the last sort permuted
+  bool slots_moved_ = true;  // some slot changed bodies since the neighbour lists were built (their pairs may be out of order)
   std::vector<SlotStatic> slot_static_;
   std::vector<SlotState> slot_state_;
   std::vector<std::uint8_t> slot_dynamic_;
