@@ -13,6 +13,7 @@ double ContactCache::previous(const PairKey& k) const {
 
 double ContactCache::previous(const PairKey& k, std::size_t& hint) const {
   if (hint < prev_.size() && prev_[hint].first == k) return prev_[hint++].second;
+  prepare_lookups();
   if (index_.empty()) return 0.0;
   const std::size_t mask = index_.size() - 1;
   for (std::size_t h = PairKeyHash{}(k) & mask;; h = (h + 1) & mask) {
@@ -25,7 +26,8 @@ double ContactCache::previous(const PairKey& k, std::size_t& hint) const {
   }
 }
 
-void ContactCache::rebuild_index() {
+void ContactCache::rebuild_index() const {
+  index_stale_ = false;
   std::size_t cap = 16;
   while (cap < 2 * prev_.size()) cap *= 2;
   index_.assign(cap, -1);
@@ -41,7 +43,8 @@ void ContactCache::end_step() {
   cur_.resize(cur_count_);  // shrinks: no writes
   prev_.swap(cur_);
   cur_count_ = 0;
-  rebuild_index();
+  index_stale_ = true;
+  ++generation_;
 }
 
 std::vector<std::pair<PairKey, double>> ContactCache::entries() const {
@@ -56,7 +59,8 @@ void ContactCache::restore(const std::vector<std::pair<PairKey, double>>& entrie
   prev_ = entries;
   cur_.clear();
   cur_count_ = 0;
-  rebuild_index();
+  index_stale_ = true;
+  ++generation_;
 }
 
 }  // namespace polyfloe::contact

@@ -25,11 +25,21 @@ struct PairKeyHash {
 
 class ContactCache {
  public:
-  // Spring value stored for this pair by the previous step, or 0 for a new contact.
+  // Spring value stored for this pair by the previous step, or 0 for a new contact. The index these look pairs up
+  // by is rebuilt on the first lookup after a step (end_step, restore): not safe from several threads at once
+  // unless prepare_lookups() was called since.
   double previous(const PairKey& k) const;
   // The same, first trying the entry at `hint` and leaving `hint` just past the entry found: pairs come in nearly
   // the same order every step, so a loop that passes one hint along reads the store in order, without hashing.
   double previous(const PairKey& k, std::size_t& hint) const;
+  void prepare_lookups() const {
+    if (index_stale_) rebuild_index();
+  }
+  // The value of the previous step's i-th store (the i-th place of its store_slots, or its i-th store()): for a
+  // caller that kept where it stored each pair, with the generation() it stored them under, and needs no lookup.
+  double stored(std::size_t i) const { return prev_[i].second; }
+  // Counts the steps (end_step) and restores: the previous step's stores are those made while it was one less.
+  std::uint64_t generation() const { return generation_; }
   // Record this step's value; the pair survives into the next step. Each pair is stored at most once a step.
   void store(const PairKey& k, double spring) {
     if (cur_count_ < cur_.size()) cur_[cur_count_] = {k, spring};
@@ -51,14 +61,17 @@ class ContactCache {
   void restore(const std::vector<std::pair<PairKey, double>>& entries);
 
  private:
-  void rebuild_index();
+  void rebuild_index() const;
   // This step's stores, appended in order (no hashing on the hot path), and last step's entries with an
-  // open-addressing index (linear probing, power-of-two size, at most half full). No allocation once warm.
+  // open-addressing index (linear probing, power-of-two size, at most half full), built when first needed. No
+  // allocation once warm.
   // cur_ keeps the storage of the step before last as room (no clearing, no allocation): its first cur_count_
   // entries are this step's.
   std::vector<std::pair<PairKey, double>> cur_, prev_;
   std::size_t cur_count_ = 0;
-  std::vector<std::int32_t> index_;  // position in prev_, -1 = empty
+  mutable std::vector<std::int32_t> index_;  // position in prev_, -1 = empty
+  mutable bool index_stale_ = false;
+  std::uint64_t generation_ = 0;
 };
 
 }  // namespace polyfloe::contact

@@ -118,6 +118,9 @@ void World::build_skin() {
     }
   }
   skin_topo_.assign(skin_adj_.size(), contact::OverlapTopology{});
+  skin_store_.resize(skin_adj_.size());
+  skin_store_gen_.assign(skin_adj_.size(), 0);  // no generation: the cache's stores are looked up by key
+  lists_built_ = true;
   skin_pos_ = pos_;
   skin_yaw_ = yaw_;
   slots_moved_ = false;
@@ -131,6 +134,7 @@ void World::candidate_pairs() {
   // still farther apart than their bodies have moved since the build (they cannot touch). The pairs that touch
   // are therefore a function of the current state alone, in an order that is one too, whenever the lists were
   // built: a restarted run and any number of threads sum the same contacts in the same order.
+  lists_built_ = false;
   if (skin_outrun()) build_skin();
   const int n = static_cast<int>(size());
   const int chunks = threads_ == 1 ? 1 : std::min(n, 8 * threads_);
@@ -224,6 +228,7 @@ void World::sum_contacts(int n) {
     hits += blk.hits;
   }
   const std::span<std::pair<contact::PairKey, double>> stores = cache_.store_slots(hits);
+  const std::uint64_t next_gen = cache_.generation() + 1;  // the generation end_step() makes them the previous
   slot_force_.resize(static_cast<std::size_t>(n));
   slot_torque_.resize(static_cast<std::size_t>(n));
   POLYFLOE_OMP_FOR(threads_)
@@ -265,6 +270,10 @@ void World::sum_contacts(int n) {
         blk.worst_a = A.body;
         blk.worst_b = B.body;
       }
+      if (const int e = pairs_[p].entry; e >= 0) {  // where the next evaluation finds it (see world.h)
+        skin_store_[static_cast<std::size_t>(e)] = static_cast<std::uint32_t>(store);
+        skin_store_gen_[static_cast<std::size_t>(e)] = next_gen;
+      }
       stores[store++] = {contact::PairKey{A.id, B.id}, r.cf.spring};
       add(r, pairs_[p].a);
       if (pairs_[p].b < hi) add(r, pairs_[p].b);
@@ -301,6 +310,7 @@ void World::sum_contacts(int n) {
     if (blk.deepest.ratio > deepest_.ratio) deepest_ = blk.deepest;
   }
   cache_.end_step();
+  history_gen_ = cache_.generation();
 }
 
 const std::vector<ContactRecord>& World::contacts() const {
@@ -340,6 +350,10 @@ void World::contact_forces(double dt) {
   const bool gjk = settings_.narrow_phase == PlanarNarrowPhase::gjk_epa;
   const int np_int = static_cast<int>(np);
   cache_hint_.assign(static_cast<std::size_t>(threads_), CacheHint{});
+  // Last step's springs by the list entries where the lists stand and the cache is the one the last sum stored
+  // into; otherwise by key, through the cache's index (built here, before the threads read it).
+  const bool by_entry = !lists_built_ && history_gen_ == cache_.generation();
+  if (!by_entry) cache_.prepare_lookups();
   POLYFLOE_OMP_FOR(threads_)
   for (int p = 0; p < np_int; ++p) {
     PairResult& r = pair_results_[static_cast<std::size_t>(p)];
@@ -410,7 +424,12 @@ void World::contact_forces(double dt) {
     // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
     // penetration).
     if (gradient) k.mu *= std::max(0.0, dir_b.dot(g.normal));
-    const double spring = cache_.previous(key, cache_hint_[polyfloe_thread_index()].at);
+    const double spring =
+        by_entry  // (every pair of candidate_pairs() has its list entry)
+            ? (skin_store_gen_[static_cast<std::size_t>(entry)] == history_gen_
+                   ? cache_.stored(skin_store_[static_cast<std::size_t>(entry)])
+                   : 0.0)
+            : cache_.previous(key, cache_hint_[polyfloe_thread_index()].at);
     r.cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), spring, dt);
     // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
     const double km = k.k_n / k.m_star;

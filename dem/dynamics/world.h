@@ -353,6 +353,14 @@ class World {
   // Per listed pair: the contact law's coefficients of its two bodies (a function of their radii and masses alone,
   // so computed once per build, in the same arithmetic as per contact).
   std::vector<contact::PairCoefficients> skin_coef_;
+  // Per listed pair: where its spring was stored among the contact cache's stores, and under which generation of
+  // the cache (ContactCache::stored): while the lists stand, a pair finds last step's spring without a lookup, and
+  // a pair not stored at the last step is a new contact. history_gen_ is the generation the last contact sum
+  // stored under; after a build or a restore of the cache the springs are looked up by key (one evaluation).
+  std::vector<std::uint32_t> skin_store_;
+  std::vector<std::uint64_t> skin_store_gen_;
+  std::uint64_t history_gen_ = ~std::uint64_t{0};
+  bool lists_built_ = true;  // the lists were built in this evaluation (their entries have no history yet)
   std::vector<double> skin_moved_;  // by the build's slot: how far the body's vertices may have moved since [m]
   std::vector<geometry::Aabb> skin_boxes_;
   std::uint64_t skin_builds_ = 0;

@@ -75,3 +75,34 @@ TEST(ContactCache, HintedLookupAgreesWithTheHashedOne) {
     }
   }
 }
+
+TEST(ContactCache, StoresByPlaceAndGenerations) {
+  // A caller that kept where it stored each pair reads last step's value by that place (no lookup); the generation
+  // tells it whether the previous stores are the ones it made: one more per step, and a restore changes it too.
+  ContactCache c;
+  const std::uint64_t g0 = c.generation();
+  const auto room = c.store_slots(3);
+  room[0] = {make_key(1, 2), 0.25};
+  room[1] = {make_key(5, 3), -0.5};
+  room[2] = {make_key(7, 9), 2.0};
+  c.end_step();
+  EXPECT_EQ(c.generation(), g0 + 1);
+  EXPECT_EQ(c.stored(0), 0.25);
+  EXPECT_EQ(c.stored(1), -0.5);
+  EXPECT_EQ(c.stored(2), 2.0);
+  c.prepare_lookups();  // the index, built once; the lookups agree with the places
+  EXPECT_EQ(c.previous(make_key(3, 5)), -0.5);
+  c.store(make_key(9, 7), 1.0);
+  c.end_step();
+  EXPECT_EQ(c.generation(), g0 + 2);
+  EXPECT_EQ(c.stored(0), 1.0);
+  EXPECT_EQ(c.previous(make_key(7, 9)), 1.0);  // the index is rebuilt after a step, without being asked
+  EXPECT_EQ(c.previous(make_key(1, 2)), 0.0);
+  const auto entries = c.entries();
+  ContactCache d;
+  d.restore({{make_key(1, 2), 4.0}});
+  d.restore(entries);
+  EXPECT_EQ(d.generation(), 2u);
+  EXPECT_EQ(d.previous(make_key(7, 9)), 1.0);
+  EXPECT_EQ(d.previous(make_key(1, 2)), 0.0);
+}
