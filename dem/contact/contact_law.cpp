@@ -89,6 +89,7 @@ PairCoefficients ContactLaw::coefficients(double r_a, double r_b, double m_a, do
   c.k_s = c.k_n / (2.0 + 2.0 * s_.poisson_ratio);
   c.mu = s_.friction;
   c.m_star = m;
+  c.k_per_m = c.k_n / m;
   if (s_.damping == DampingModel::speed_independent) {
     c.damping = zeta_ * std::sqrt(m * c.k_n);
   } else {
@@ -96,26 +97,6 @@ PairCoefficients ContactLaw::coefficients(double r_a, double r_b, double m_a, do
     c.damping = zeta_ * std::pow(c.k_n, 0.6) * std::pow(m, 0.4) * std::pow(s_.reference_speed, -0.2);
   }
   return c;
-}
-
-ContactForce ContactLaw::evaluate(const PairCoefficients& c, double depth, double depth_rate, double slip_velocity,
-                                  double spring, double dt) const {
-  ContactForce f;
-  const double sqrt_d = std::sqrt(depth);
-  const double damp_factor = s_.damping == DampingModel::paper ? sqrt_d : std::sqrt(sqrt_d);
-  f.normal = std::max(0.0, c.k_n * depth * sqrt_d + c.damping * damp_factor * depth_rate);
-  const double k_t = c.k_s * sqrt_d;  // k_s |d|^(kappa - 1)
-  double s = spring + slip_velocity * dt;
-  const double limit = c.mu * f.normal;
-  double ft = -k_t * s;
-  if (std::abs(ft) > limit) {
-    f.sliding = true;
-    ft = std::copysign(limit, ft);
-    s = k_t > 0.0 ? -ft / k_t : 0.0;
-  }
-  f.tangential = ft;
-  f.spring = s;
-  return f;
 }
 
 }  // namespace polyfloe::contact

@@ -7,6 +7,8 @@
 // See docs/model.md for how the damping coefficient c is mapped from a target restitution e.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace polyfloe::contact {
@@ -61,6 +63,7 @@ struct PairCoefficients {
   double damping = 0.0;  // c [N s/m^(1+p)]
   double mu = 0.0;       // [-]
   double m_star = 0.0;   // effective mass [kg]
+  double k_per_m = 0.0;  // k_n / m_star [N/(m^1.5 kg)] (the contact-duration estimate's, per contact)
 };
 
 struct ContactForce {
@@ -78,8 +81,26 @@ class ContactLaw {
   PairCoefficients coefficients(double r_a, double r_b, double m_a, double m_b) const;
   // depth d [m], depth_rate d_dot [m/s] (> 0 while approaching), tangential slip velocity of B relative to A along
   // t [m/s], previous spring s [m], time step [s].
+  // Inline: the step's pair loop shares its square root of the depth.
   ContactForce evaluate(const PairCoefficients& c, double depth, double depth_rate, double slip_velocity,
-                        double spring, double dt) const;
+                        double spring, double dt) const {
+    ContactForce f;
+    const double sqrt_d = std::sqrt(depth);
+    const double damp_factor = s_.damping == DampingModel::paper ? sqrt_d : std::sqrt(sqrt_d);
+    f.normal = std::max(0.0, c.k_n * depth * sqrt_d + c.damping * damp_factor * depth_rate);
+    const double k_t = c.k_s * sqrt_d;  // k_s |d|^(kappa - 1)
+    double s = spring + slip_velocity * dt;
+    const double limit = c.mu * f.normal;
+    double ft = -k_t * s;
+    if (std::abs(ft) > limit) {
+      f.sliding = true;
+      ft = std::copysign(limit, ft);
+      s = k_t > 0.0 ? -ft / k_t : 0.0;
+    }
+    f.tangential = ft;
+    f.spring = s;
+    return f;
+  }
 
  private:
   ContactLawSettings s_;

@@ -432,7 +432,7 @@ void World::contact_forces(double dt) {
             : cache_.previous(key, cache_hint_[polyfloe_thread_index()].at);
     r.cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), spring, dt);
     // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
-    const double km = k.k_n / k.m_star;
+    const double km = k.k_per_m;
     r.v2 = rate * rate + 0.8 * km * g.depth * g.depth * std::sqrt(g.depth);
     r.q2 = r.v2 * (km * km) * (km * km);
 
