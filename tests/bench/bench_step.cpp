@@ -7,8 +7,9 @@
 //
 //   BM_DensePack/<N>   a jammed pack at area fraction ~0.87 inside four fixed walls: every floe already presses on
 //                      about four neighbours (or a wall) with ~2 mm overlaps when timing starts.
-//   BM_DensePackSorted/150000  the same pack with the bodies stored in lattice (row-major) order, so that bodies
-//                      close in space are close in memory: what locality is worth.
+//   BM_DensePackSorted/<N>  the same pack with the bodies stored in lattice (row-major) order, so that bodies
+//                      close in space are close in memory, as a scene's generated field is added to the World
+//                      (space order; scene/build_world.cpp): what locality is worth, on 1 and 2 threads.
 //   BM_FreeDrift/<N>   an open field at area fraction ~0.62 with random velocities (few contacts).
 //   BM_MemoryPerFloe/<N>  heap bytes held per floe by a warm World of the DensePack (its shapes included): glibc's
 //                      mallinfo2() before the pack is built and after the World is warm and the pack's body
@@ -16,8 +17,8 @@
 //   BM_DensePackContactOnly/<N>  the DensePack with every drift term off: the contact dynamics alone, what the
 //                      LAMMPS disk pack of scripts/bench_lammps.sh does (it has no drag); up to 1.5M floes.
 //
-// Bodies are stored in random order (as a generated field stores them, largest first, with no relation to
-// position) except in BM_DensePackSorted.
+// Bodies are stored in random order (no relation to position: bodies added in any order, e.g. a generated field
+// largest first, as scenes did before 2026-11-25) except in BM_DensePackSorted.
 //
 // All but DensePackContactOnly have every default drift term on (form drag, drag moment, skin and air drag;
 // current 0.2 m/s, wind 10 m/s, not aligned); h = 1 m, dt = shortest_contact_duration(1 m/s) / 40, the time step a
@@ -234,7 +235,10 @@ BENCHMARK(BM_DensePack)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMil
 BENCHMARK(BM_DensePack)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePack)->Args({15000, 2})->Iterations(100)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DensePack)->Args({150000, 2})->Iterations(10)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DensePackSorted)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackSorted)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackSorted)->Args({15000, 2})->Iterations(100)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DensePackSorted)->Args({150000, 2})->Iterations(10)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FreeDrift)->Args({1500, 1})->Iterations(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FreeDrift)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FreeDrift)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
