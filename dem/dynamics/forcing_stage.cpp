@@ -32,24 +32,9 @@ bool World::drift_from_linear_model(double dt) const {
          lin_force_.size() == n && lin_torque_.size() == n;
 }
 
-void World::drift_forces(double t, bool linear) {
+void World::drift_forces(double t) {
   const forcing::DriftSettings& s = settings_.drift;
   const std::size_t n = size();
-  if (linear) {
-    // Between full evaluations: the linear model F_d(v) = b - D v of the last one (b = lin_force_, lin_torque_;
-    // D and m f kept in drift_load_), at this step's predicted velocity.
-    const int n_int = static_cast<int>(n);
-    POLYFLOE_OMP_FOR(threads_)
-    for (int ii = 0; ii < n_int; ++ii) {
-      const std::size_t i = static_cast<std::size_t>(ii);
-      const forcing::DriftLoad& d = drift_load_[i];
-      if (!is_dynamic_[i] || !d.has_damping()) continue;
-      set_linear_drift_load(i, vel_eval_[i], omega_eval_[i]);
-      force_[i] += d.force;
-      torque_[i] += d.torque;
-    }
-    return;
-  }
   drift_load_.assign(n, forcing::DriftLoad{});
   if (!s.any()) return;
 

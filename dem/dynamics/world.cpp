@@ -149,6 +149,11 @@ void World::compute_forces(double dt) {
   omega_eval_.resize(n);
   const double h = 0.5 * dt;
   const int n_int = static_cast<int>(n);
+  const auto t0 = clock::now();
+  // Between full evaluations of the drift loads (DriftSettings::update_every), each body's load comes from the
+  // last one's linear model F_d(v) = b - D v (b = lin_force_, lin_torque_; D and m f kept in drift_load_) at the
+  // velocity predicted here, in the same pass.
+  const bool linear = drift_from_linear_model(dt);
   POLYFLOE_OMP_FOR(threads_)
   for (int ii = 0; ii < n_int; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -162,11 +167,14 @@ void World::compute_forces(double dt) {
     }
     force_[i] = ext_force_[i];
     torque_[i] = ext_torque_[i];
+    if (linear && is_dynamic_[i] && drift_load_[i].has_damping()) {
+      set_linear_drift_load(i, vel_eval_[i], omega_eval_[i]);
+      force_[i] += drift_load_[i].force;
+      torque_[i] += drift_load_[i].torque;
+    }
   }
-  auto t0 = clock::now();
-  const bool linear = drift_from_linear_model(dt);
-  drift_forces(time_ + dt, linear);
-  auto t1 = clock::now();
+  if (!linear) drift_forces(time_ + dt);
+  const auto t1 = clock::now();
   contact_forces(dt);
   profile_.forcing += std::chrono::duration<double>(t1 - t0).count();
   if (bonds_) bond_forces(time_ + dt);

@@ -69,7 +69,9 @@ struct ContactRecord {
   Vec2 force_on_b() const { return force; }
 };
 
-// Wall-clock seconds spent in each stage of step(), summed over steps.
+// Wall-clock seconds spent in each stage of step(), summed over steps. `forcing` includes the velocity prediction
+// the velocity-dependent forces are evaluated at (and, between full drift evaluations, the linear model's loads,
+// in the same loop).
 struct StepProfile {
   double integrate = 0.0, shapes = 0.0, broad = 0.0, narrow_and_law = 0.0, forcing = 0.0, bonds = 0.0;
   std::uint64_t steps = 0;
@@ -257,7 +259,9 @@ class World {
   bool drift_from_linear_model(double dt) const;
   // Body i's drift load from the linear model at velocity (u, w): drift_load_[i].force, torque = b - D (u, w).
   void set_linear_drift_load(std::size_t i, const Vec2& u, double w);
-  void drift_forces(double t, bool linear);
+  // The full evaluation of every body's drift load (the steps between full evaluations take the linear model in
+  // compute_forces' first loop).
+  void drift_forces(double t);
   void bond_forces(double t);
 
   WorldSettings settings_;
