@@ -11,7 +11,17 @@
 namespace polyfloe::dynamics {
 
 World::World(const WorldSettings& settings)
-    : settings_(settings), law_(settings.contact), broad_(settings.broad_phase_cell) {}
+    : settings_(settings), law_(settings.contact), broad_(settings.broad_phase_cell) {
+  // (the scene reader says the same naming the scene's key, forcing.update_every)
+  const forcing::DriftSettings& d = settings.drift;
+  if (d.update_every < 1 || d.update_every > 1000)
+    throw std::invalid_argument("DriftSettings::update_every is " + std::to_string(d.update_every) +
+                                "; it must be in [1, 1000]");
+  if (d.update_every > 1 && d.treatment != forcing::DriftTreatment::semi_implicit)
+    throw std::invalid_argument("DriftSettings::update_every = " + std::to_string(d.update_every) +
+                                " needs the semi-implicit treatment (the linear model between full evaluations "
+                                "is its damping matrix); use 1 with the explicit one");
+}
 
 int World::add_body(const BodyDesc& d) {
   if (!d.shape) throw std::invalid_argument("body " + std::to_string(d.id) + " has no shape");

@@ -28,6 +28,8 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "dynamics/world.h"
 #include "forcing/analytic_fields.h"
@@ -507,4 +509,30 @@ TEST(Drift, UpdateEveryKeepsTheSteadyStateAndConvergesInTheTransient) {
   const double err_channel = (transient(8, dt_channel) - transient(1, dt_channel)).norm() / ref.norm();
   std::printf("update_every = 8 at dt = %.3g s: differs from every step's by %.2e\n", dt_channel, err_channel);
   EXPECT_LT(err_channel, 0.5 * step_err);
+}
+
+TEST(Drift, AWorldRefusesAnUpdateIntervalItCannotKeep) {
+  // The World's own check (the scene reader names the scene's key): an interval outside [1, 1000], or above 1 with
+  // the explicit treatment, which has no linear model to step with.
+  dynamics::WorldSettings ws;
+  ws.drift = skin_and_air({0.3, 0.0}, {15.0, 5.0});
+  auto message = [&] {
+    try {
+      dynamics::World w(ws);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  ws.drift.update_every = 8;
+  EXPECT_EQ(message(), "");
+  ws.drift.update_every = 0;
+  EXPECT_NE(message().find("update_every is 0; it must be in [1, 1000]"), std::string::npos) << message();
+  ws.drift.update_every = 1001;
+  EXPECT_NE(message().find("[1, 1000]"), std::string::npos) << message();
+  ws.drift.update_every = 8;
+  ws.drift.treatment = forcing::DriftTreatment::explicit_step;
+  EXPECT_NE(message().find("needs the semi-implicit treatment"), std::string::npos) << message();
+  ws.drift.update_every = 1;
+  EXPECT_EQ(message(), "");
 }
