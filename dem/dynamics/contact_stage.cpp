@@ -334,12 +334,7 @@ void World::contact_forces(double dt) {
   const auto t1 = clock::now();
 
   const int n = static_cast<int>(size());
-  slot_state_.resize(static_cast<std::size_t>(n));
-  POLYFLOE_OMP_FOR(threads_)
-  for (int k = 0; k < n; ++k) {
-    const int i = slots_[k].body;
-    slot_state_[k] = {pos_[i], vel_eval_[i], omega_eval_[i]};
-  }
+  // slot_state_: gathered by compute_forces' first pass.
 
   // Every candidate pair evaluated apart (in parallel: the cache is only read here), then added up in the broad
   // phase's order (sum_contacts: in parallel, each slot in pair order), so nothing depends on the threads.

@@ -132,11 +132,10 @@ void World::step(double dt) {
   auto t0 = clock::now();
   kick_and_drift(dt);
   auto t1 = clock::now();
-  update_shapes();
-  auto t2 = clock::now();
+  sort_slots();
   profile_.integrate += std::chrono::duration<double>(t1 - t0).count();
-  profile_.shapes += std::chrono::duration<double>(t2 - t1).count();
-  compute_forces(dt);
+  profile_.shapes += std::chrono::duration<double>(clock::now() - t1).count();
+  evaluate_forces(dt, true);  // the world-frame shapes in its first loop
   auto t3 = clock::now();
   kick_implicit(dt);
   profile_.integrate += std::chrono::duration<double>(clock::now() - t3).count();
@@ -145,7 +144,9 @@ void World::step(double dt) {
   ++profile_.steps;
 }
 
-void World::compute_forces(double dt) {
+void World::compute_forces(double dt) { evaluate_forces(dt, false); }
+
+void World::evaluate_forces(double dt, bool shapes) {
   using clock = std::chrono::steady_clock;
   // Velocity-dependent forces (damping, friction history, drag) see the velocity predicted at the end of the
   // step from the half-step velocity and the last forces: second-order accurate, where the half-step velocity
@@ -163,10 +164,14 @@ void World::compute_forces(double dt) {
   // Between full evaluations of the drift loads (DriftSettings::update_every), each body's load comes from the
   // last one's linear model F_d(v) = b - D v (b = lin_force_, lin_torque_; D and m f kept in drift_load_) at the
   // velocity predicted here, in the same pass.
+  // With `shapes` (a step, after the slots were sorted) the same pass first moves each body's world-frame vertices
+  // and box; and it gathers the contact stage's packed state by slot.
   const bool linear = drift_from_linear_model(dt);
+  slot_state_.resize(n);
   POLYFLOE_OMP_FOR(threads_)
   for (int ii = 0; ii < n_int; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
+    if (shapes && motion_[i] != Motion::fixed) update_shape(ii);
     if (h > 0.0 && i < lin_force_.size() && drift_load_[i].has_damping()) {
       const Vec3 v = implicit_velocity(i, dt);
       vel_eval_[i] = v.u;
@@ -182,11 +187,15 @@ void World::compute_forces(double dt) {
       force_[i] += drift_load_[i].force;
       torque_[i] += drift_load_[i].torque;
     }
+    slot_state_[static_cast<std::size_t>(body_slot_[i])] = {pos_[i], vel_eval_[i], omega_eval_[i]};
   }
+  const auto t_pass = clock::now();
+  // (a step's profile counts this pass with the shapes; compute_forces from outside, with the drift forces)
+  if (shapes) profile_.shapes += std::chrono::duration<double>(t_pass - t0).count();
   if (!linear) drift_forces(time_ + dt);
   const auto t1 = clock::now();
   contact_forces(dt);
-  profile_.forcing += std::chrono::duration<double>(t1 - t0).count();
+  profile_.forcing += std::chrono::duration<double>(t1 - (shapes ? t_pass : t0)).count();
   if (bonds_) bond_forces(time_ + dt);
   // The linear model of the drift load in the body's velocity, F_d(v) = b - D v with b = F_d(v*) + D v*; kept as
   // it is where this step's loads came from it.

@@ -69,9 +69,9 @@ struct ContactRecord {
   Vec2 force_on_b() const { return force; }
 };
 
-// Wall-clock seconds spent in each stage of step(), summed over steps. `forcing` includes the velocity prediction
-// the velocity-dependent forces are evaluated at (and, between full drift evaluations, the linear model's loads,
-// in the same loop).
+// Wall-clock seconds spent in each stage of step(), summed over steps. `shapes` is the slot sort and one pass over
+// the bodies: world-frame shapes, the velocity prediction the velocity-dependent forces are evaluated at, and
+// between full drift evaluations the linear model's drift loads; `forcing` is the full drift evaluations.
 struct StepProfile {
   double integrate = 0.0, shapes = 0.0, broad = 0.0, narrow_and_law = 0.0, forcing = 0.0, bonds = 0.0;
   std::uint64_t steps = 0;
@@ -222,6 +222,8 @@ class World {
   void compute_forces(double dt);
 
  private:
+  // compute_forces; with `shapes` (step()) its first pass also moves the world-frame shapes (the slots sorted).
+  void evaluate_forces(double dt, bool shapes);
   void kick_and_drift(double dt);  // the first half kick, then the positions over the whole step
   void add_motion(std::size_t i, MotionSummary& s) const;  // body i's share of the motion summary
   static constexpr int kSummaryBlock = 64;                 // bodies per block of the motion summary's sums

@@ -42,8 +42,9 @@
 //   candidates_per_floe  broad-phase candidate pairs / floes (after the timed steps)
 //   dt_ms             the time step [ms]
 //   *_ns              World::profile() stage times (wall clock) per floe-step [ns]: integrate (kicks + drift),
-//                     shapes (world vertices + boxes), broad, narrow_law (narrow phase + contact law + cache),
-//                     forcing (drift)
+//                     shapes (slot sort, world vertices + boxes, velocity prediction, linear drift model between
+//                     full drift evaluations), broad, narrow_law (narrow phase + contact law + cache), forcing
+//                     (full drift evaluations; every step here: update_every = 1)
 //   narrow_only_ns    planar_overlap alone over the final state's candidate pairs, per floe [ns] (timed apart from
 //                     the steps, each pair fresh: no kept topology, so an upper bound of the part of narrow_law that
 //                     is geometry); ns_per_candidate: the same per pair
