@@ -12,10 +12,12 @@ namespace polyfloe::dynamics {
 // The first half kick and the drift, in one pass over the bodies. Where drag and Coriolis are treated
 // semi-implicitly (bodies whose drift load has a damping matrix), drag enters only the final kick (kick_implicit),
 // over the whole step; the first half kick applies the other forces and Coriolis at the start-of-step velocity.
-void World::kick_and_drift(double dt) {
+// The same pass writes each body's slot key at its new position (sort_slots' first part).
+bool World::kick_and_drift(double dt) {
   const double h = 0.5 * dt;
   const int n = static_cast<int>(size());
-  POLYFLOE_OMP_FOR(threads_)
+  bool changed = false;
+  POLYFLOE_OMP_FOR_ANY(threads_, changed)
   for (int ii = 0; ii < n; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
     Vec2 f = force_[i];
@@ -28,10 +30,13 @@ void World::kick_and_drift(double dt) {
     }
     vel_[i] += (h * inv_mass_[i]) * f;
     omega_[i] += h * inv_inertia_[i] * t;
-    if (motion_[i] == Motion::fixed) continue;
-    pos_[i] += dt * vel_[i];
-    yaw_[i] += dt * omega_[i];
+    if (motion_[i] != Motion::fixed) {
+      pos_[i] += dt * vel_[i];
+      yaw_[i] += dt * omega_[i];
+    }
+    changed = set_slot_key(ii) || changed;
   }
+  return changed;
 }
 
 // A = M + dt D_drag + h C (C the Coriolis part m f [[0, -1], [1, 0]]) is positive definite (M > 0, D_drag >= 0,
@@ -164,14 +169,20 @@ bool slot_less(const auto& a, const auto& b) { return a.key != b.key ? a.key < b
 
 }  // namespace
 
-void World::sort_slots() {
+bool World::set_slot_key(int i) {
+  SlotKey& slot = slots_[static_cast<std::size_t>(body_slot_[static_cast<std::size_t>(i)])];
+  const std::uint64_t key = geometry::space_key(pos_[static_cast<std::size_t>(i)], order_cell_);
+  const bool changed = key != slot.key;
+  slot.key = key;
+  return changed;
+}
+
+void World::sort_slots(bool keys_set, bool changed) {
   const int n = static_cast<int>(slots_.size());
-  bool changed = false;
-  POLYFLOE_OMP_FOR_ANY(threads_, changed)
-  for (int k = 0; k < n; ++k) {
-    const std::uint64_t key = geometry::space_key(pos_[slots_[k].body], order_cell_);
-    changed = changed || key != slots_[k].key;
-    slots_[k].key = key;
+  if (!keys_set) {
+    changed = false;
+    POLYFLOE_OMP_FOR_ANY(threads_, changed)
+    for (int i = 0; i < n; ++i) changed = set_slot_key(i) || changed;
   }
   moved_.clear();
   if (!changed) return;  // sorted by (key, body) as before: nothing moves (most steps)
@@ -219,7 +230,7 @@ void World::sort_slots() {
 }
 
 void World::update_shapes() {
-  sort_slots();
+  sort_slots(false, true);
   const int n = static_cast<int>(size());
   POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i)

@@ -130,9 +130,9 @@ void World::step(double dt) {
   using clock = std::chrono::steady_clock;
   if (!forces_ready_) compute_forces(0.0);
   auto t0 = clock::now();
-  kick_and_drift(dt);
+  const bool keys_changed = kick_and_drift(dt);
   auto t1 = clock::now();
-  sort_slots();
+  sort_slots(true, keys_changed);
   profile_.integrate += std::chrono::duration<double>(t1 - t0).count();
   profile_.shapes += std::chrono::duration<double>(clock::now() - t1).count();
   evaluate_forces(dt, true);  // the world-frame shapes in its first loop

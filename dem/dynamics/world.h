@@ -224,7 +224,8 @@ class World {
  private:
   // compute_forces; with `shapes` (step()) its first pass also moves the world-frame shapes (the slots sorted).
   void evaluate_forces(double dt, bool shapes);
-  void kick_and_drift(double dt);  // the first half kick, then the positions over the whole step
+  // The first half kick, then the positions over the whole step and the slot keys there; whether a key changed.
+  bool kick_and_drift(double dt);
   void add_motion(std::size_t i, MotionSummary& s) const;  // body i's share of the motion summary
   static constexpr int kSummaryBlock = 64;                 // bodies per block of the motion summary's sums
   void kick_implicit(double dt);
@@ -241,7 +242,10 @@ class World {
   void update_shapes();
   void update_shape(int i);
   // Re-sorts the contact stage's slots (below) by the bodies' current positions and lays out the moved ones anew.
-  void sort_slots();
+  // The slots in order of their keys: the keys as kick_and_drift() set them (`keys_set`; `changed`: whether any
+  // changed), or set here from the positions.
+  void sort_slots(bool keys_set, bool changed);
+  bool set_slot_key(int i);  // body i's slot key at its position; whether it changed
   // Body i's packed slot data, its vertices starting at `vert_begin` in world_xy_.
   struct SlotStatic;
   SlotStatic slot_static_of(int i, int vert_begin) const;
