@@ -36,6 +36,7 @@ void World::drift_forces(double t) {
   const forcing::DriftSettings& s = settings_.drift;
   const std::size_t n = size();
   drift_load_.assign(n, forcing::DriftLoad{});
+  inverse_dt_ = 0.0;  // new drag matrices: compute_forces keeps their inverses anew
   if (!s.any()) return;
 
   const FieldNow ocean(s.ocean.get(), t), wind(s.wind.get(), t);

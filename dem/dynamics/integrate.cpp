@@ -41,22 +41,27 @@ bool World::kick_and_drift(double dt) {
 
 // A = M + dt D_drag + h C (C the Coriolis part m f [[0, -1], [1, 0]]) is positive definite (M > 0, D_drag >= 0,
 // C antisymmetric), so the cofactor inverse of the 3 x 3 is safe.
-World::Vec3 World::solve_with_damping(const forcing::DriftLoad& d, double dt, double mass, double inertia,
-                                      const Vec2& f1, double f2) {
+World::DampedInverse World::damped_inverse(const forcing::DriftLoad& d, double dt, double mass, double inertia) {
   const double h = 0.5 * dt;
   const double a00 = mass + dt * d.dxx, a01 = dt * d.dxy - h * d.mf, a02 = dt * d.dxw;
   const double a10 = dt * d.dxy + h * d.mf, a11 = mass + dt * d.dyy, a12 = dt * d.dyw;
   const double a20 = dt * d.dxw, a21 = dt * d.dyw, a22 = inertia + dt * d.dww;
   const double c00 = a11 * a22 - a12 * a21, c01 = a12 * a20 - a10 * a22, c02 = a10 * a21 - a11 * a20;
-  const double inv_det = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02);
   // x = A^-1 f via the adjugate (transposed cofactors).
-  const double x0 = (c00 * f1.x() + (a02 * a21 - a01 * a22) * f1.y() + (a01 * a12 - a02 * a11) * f2) * inv_det;
-  const double x1 = (c01 * f1.x() + (a00 * a22 - a02 * a20) * f1.y() + (a02 * a10 - a00 * a12) * f2) * inv_det;
-  const double x2 = (c02 * f1.x() + (a01 * a20 - a00 * a21) * f1.y() + (a00 * a11 - a01 * a10) * f2) * inv_det;
-  return {{x0, x1}, x2};
+  return {{c00, a02 * a21 - a01 * a22, a01 * a12 - a02 * a11,  //
+           c01, a00 * a22 - a02 * a20, a02 * a10 - a00 * a12,  //
+           c02, a01 * a20 - a00 * a21, a00 * a11 - a01 * a10},
+          1.0 / (a00 * c00 + a01 * c01 + a02 * c02)};
 }
 
-World::Vec3 World::implicit_velocity(std::size_t i, double dt) const {
+World::Vec3 World::apply(const DampedInverse& a, const Vec2& f1, double f2) {
+  const double* m = a.adj;
+  return {{(m[0] * f1.x() + m[1] * f1.y() + m[2] * f2) * a.inv_det,
+           (m[3] * f1.x() + m[4] * f1.y() + m[5] * f2) * a.inv_det},
+          (m[6] * f1.x() + m[7] * f1.y() + m[8] * f2) * a.inv_det};
+}
+
+World::Vec3 World::implicit_velocity(std::size_t i, double dt, const DampedInverse& a) const {
   // Drag linear in v with each sample's speed factor frozen at the prediction v*: F_d(v) = b - D v; Coriolis
   // F_c(v) = -C v. With F_o the other forces at the end of the step and v the half-kicked velocity
   // (v = v_n + h (F_o,n - C v_n) / m):
@@ -68,8 +73,8 @@ World::Vec3 World::implicit_velocity(std::size_t i, double dt) const {
   const double h = 0.5 * dt;
   const Vec2 f_other = force_[i] - d.force;
   const double t_other = torque_[i] - d.torque;
-  return solve_with_damping(d, dt, mass_[i], inertia_[i], mass_[i] * vel_[i] + h * f_other + dt * lin_force_[i],
-                            inertia_[i] * omega_[i] + h * t_other + dt * lin_torque_[i]);
+  return apply(a, mass_[i] * vel_[i] + h * f_other + dt * lin_force_[i],
+               inertia_[i] * omega_[i] + h * t_other + dt * lin_torque_[i]);
 }
 
 void World::set_linear_drift_load(std::size_t i, const Vec2& u, double w) {
@@ -95,7 +100,7 @@ void World::kick_implicit(double dt) {
         vel_[i] += (h * inv_mass_[i]) * force_[i];
         omega_[i] += h * inv_inertia_[i] * torque_[i];
       } else {
-        const Vec3 v = implicit_velocity(i, dt);
+        const Vec3 v = implicit_velocity(i, dt, inverse_of(i, dt));
         vel_[i] = v.u;
         omega_[i] = v.w;
         // The drift load at the new velocity (the linear model's), so force_ stays the total force.

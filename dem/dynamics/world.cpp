@@ -66,6 +66,7 @@ int World::add_body(const BodyDesc& d) {
   motion_.push_back(d.motion);
   is_dynamic_.push_back(dyn ? 1 : 0);
   if (dyn) dynamic_mass_ += mass_.back();
+  inverse_dt_ = 0.0;
   summary_ready_ = false;
   pos_.push_back(d.position);
   yaw_.push_back(d.yaw);
@@ -168,12 +169,16 @@ void World::evaluate_forces(double dt, bool shapes) {
   // and box; and it gathers the contact stage's packed state by slot.
   const bool linear = drift_from_linear_model(dt);
   slot_state_.resize(n);
+  // The damped inverses for this dt, where none are kept (the drag matrices of the last full evaluation).
+  const bool refill = h > 0.0 && inverse_dt_ != dt;
+  inverse_.resize(n);
   POLYFLOE_OMP_FOR(threads_)
   for (int ii = 0; ii < n_int; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (shapes && motion_[i] != Motion::fixed) update_shape(ii);
     if (h > 0.0 && i < lin_force_.size() && drift_load_[i].has_damping()) {
-      const Vec3 v = implicit_velocity(i, dt);
+      if (refill) inverse_[i] = damped_inverse(drift_load_[i], dt, mass_[i], inertia_[i]);
+      const Vec3 v = implicit_velocity(i, dt, inverse_[i]);
       vel_eval_[i] = v.u;
       omega_eval_[i] = v.w;
     } else {
@@ -189,6 +194,7 @@ void World::evaluate_forces(double dt, bool shapes) {
     }
     slot_state_[static_cast<std::size_t>(body_slot_[i])] = {pos_[i], vel_eval_[i], omega_eval_[i]};
   }
+  if (refill) inverse_dt_ = dt;
   const auto t_pass = clock::now();
   // (a step's profile counts this pass with the shapes; compute_forces from outside, with the drift forces)
   if (shapes) profile_.shapes += std::chrono::duration<double>(t_pass - t0).count();
@@ -205,6 +211,7 @@ void World::evaluate_forces(double dt, bool shapes) {
   }
   lin_force_.resize(n, Vec2{0.0, 0.0});  // bodies without drift damping keep 0 (never read)
   lin_torque_.resize(n, 0.0);
+  // With the new drag matrices, their damped inverses for this dt (the final kick's and the next steps').
   POLYFLOE_OMP_FOR(threads_)
   for (int ii = 0; ii < n_int; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -215,7 +222,9 @@ void World::evaluate_forces(double dt, bool shapes) {
     const Eigen::Vector3d dv = d.damping_times(vs, ws);
     lin_force_[i] = d.force + dv.head<2>();
     lin_torque_[i] = d.torque + dv.z();
+    if (h > 0.0) inverse_[i] = damped_inverse(d, dt, mass_[i], inertia_[i]);
   }
+  inverse_dt_ = h > 0.0 ? dt : 0.0;
   forces_ready_ = true;
 }
 
@@ -342,6 +351,7 @@ void World::restore(const WorldState& s) {
   torque_ = s.torque;
   ext_torque_ = s.external_torque;
   drift_load_ = s.drift_load;
+  inverse_dt_ = 0.0;  // the drag matrices changed
   lin_force_ = s.lin_force;
   lin_torque_ = s.lin_torque;
   cache_.restore(s.contact_history);

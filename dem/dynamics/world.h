@@ -233,12 +233,22 @@ class World {
     Vec2 u;
     double w;
   };
-  // Solves (M + dt D_drag + dt/2 C) v = (p, p_w) for a body velocity v = (u, w); D_drag and C (Coriolis) are the
-  // parts of the damping matrix of `d`.
-  static Vec3 solve_with_damping(const forcing::DriftLoad& d, double dt, double mass, double inertia, const Vec2& p,
-                                 double p_w);
-  // Body i's velocity after the final kick of a step of dt, from its half-kicked velocity (see integrate.cpp).
-  Vec3 implicit_velocity(std::size_t i, double dt) const;
+  // The inverse of A = M + dt D_drag + dt/2 C for a body (D_drag and C, Coriolis, the parts of the damping matrix
+  // of `d`), as its adjugate (row-major) and 1/det(A); applied to (p, p_w) it solves A v = (p, p_w) for the body
+  // velocity v = (u, w). A changes only with D (a full drift evaluation) and dt, so the step keeps it per body.
+  struct DampedInverse {
+    double adj[9];
+    double inv_det;
+  };
+  static DampedInverse damped_inverse(const forcing::DriftLoad& d, double dt, double mass, double inertia);
+  static Vec3 apply(const DampedInverse& a, const Vec2& p, double p_w);
+  // Body i's velocity after the final kick of a step of dt, from its half-kicked velocity (see integrate.cpp);
+  // `a` its damped_inverse for dt.
+  Vec3 implicit_velocity(std::size_t i, double dt, const DampedInverse& a) const;
+  // damped_inverse of body i for dt: the kept one where it holds (inverse_dt_ == dt), else computed.
+  DampedInverse inverse_of(std::size_t i, double dt) const {
+    return dt == inverse_dt_ ? inverse_[i] : damped_inverse(drift_load_[i], dt, mass_[i], inertia_[i]);
+  }
   void update_shapes();
   void update_shape(int i);
   // Re-sorts the contact stage's slots (below) by the bodies' current positions and lays out the moved ones anew.
@@ -383,6 +393,10 @@ class World {
   std::size_t contact_count_ = 0;
   DeepestOverlap deepest_;
   double dynamic_mass_ = 0.0;                 // [kg]
+  // Each damped body's damped_inverse for the drag matrix it has now and the step inverse_dt_ [s] (0: none kept;
+  // cleared where the drag matrices change: a full drift evaluation, a restore, a new body).
+  std::vector<DampedInverse> inverse_;
+  double inverse_dt_ = 0.0;
   mutable MotionSummary summary_;             // see motion_summary()
   mutable bool summary_ready_ = false;
   std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
