@@ -114,6 +114,10 @@ void World::kick_implicit(double dt) {
     }
     motion_blocks_[static_cast<std::size_t>(blk)] = sum;
   }
+  merge_motion_blocks();
+}
+
+void World::merge_motion_blocks() const {
   summary_ = MotionSummary{};
   for (const MotionSummary& b : motion_blocks_) summary_.merge(b);
   summary_ready_ = true;
@@ -139,14 +143,10 @@ void World::MotionSummary::merge(const MotionSummary& o) {
 const World::MotionSummary& World::motion_summary() const {
   if (!summary_ready_) {
     // The same blocks as the final kick's, so that the sum has the same bits.
-    summary_ = MotionSummary{};
     const std::size_t n = size();
-    for (std::size_t b0 = 0; b0 < n; b0 += kSummaryBlock) {
-      MotionSummary sum;
-      for (std::size_t i = b0; i < std::min(n, b0 + kSummaryBlock); ++i) add_motion(i, sum);
-      summary_.merge(sum);
-    }
-    summary_ready_ = true;
+    motion_blocks_.assign((n + kSummaryBlock - 1) / kSummaryBlock, MotionSummary{});
+    for (std::size_t i = 0; i < n; ++i) add_motion(i, motion_blocks_[i / kSummaryBlock]);
+    merge_motion_blocks();
   }
   return summary_;
 }
@@ -182,15 +182,18 @@ bool World::set_slot_key(int i) {
   return changed;
 }
 
-void World::sort_slots(bool keys_set, bool changed) {
+bool World::set_slot_keys() {
+  const int n = static_cast<int>(size());
+  bool changed = false;
+  POLYFLOE_OMP_FOR_ANY(threads_, changed)
+  for (int i = 0; i < n; ++i) changed = set_slot_key(i) || changed;
+  return changed;
+}
+
+void World::sort_slots(bool keys_changed) {
   const int n = static_cast<int>(slots_.size());
-  if (!keys_set) {
-    changed = false;
-    POLYFLOE_OMP_FOR_ANY(threads_, changed)
-    for (int i = 0; i < n; ++i) changed = set_slot_key(i) || changed;
-  }
   moved_.clear();
-  if (!changed) return;  // sorted by (key, body) as before: nothing moves (most steps)
+  if (!keys_changed) return;  // sorted by (key, body) as before: nothing moves (most steps)
   // Insertion sort from the last order: floes that keep their neighbours make it O(N). Past a budget of moves
   // (bodies crossing many others, or the first sort) a full sort; both give the one order sorted by (key, body).
   // Each move permutes the slots of an interval among themselves; overlapping intervals are merged, so that each
@@ -235,7 +238,7 @@ void World::sort_slots(bool keys_set, bool changed) {
 }
 
 void World::update_shapes() {
-  sort_slots(false, true);
+  sort_slots(set_slot_keys());
   const int n = static_cast<int>(size());
   POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i)

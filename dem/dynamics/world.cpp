@@ -1,4 +1,5 @@
 #include "dynamics/world.h"
+#include "geometry/space_order.h"
 
 #include "dynamics/parallel.h"
 
@@ -87,7 +88,7 @@ int World::add_body(const BodyDesc& d) {
   if (dyn) {
     radius_sum_ += d.shape->equivalent_radius();
     ++dynamic_count_;
-    order_cell_ = 4.0 * radius_sum_ / dynamic_count_;
+    order_cell_ = geometry::space_order_cell(radius_sum_ / dynamic_count_);
   }
   skin_ = settings_.broad_phase_skin > 0.0 ? settings_.broad_phase_skin
                                            : dynamic_count_ > 0 ? 0.2 * radius_sum_ / dynamic_count_ : 1.0;
@@ -133,7 +134,7 @@ void World::step(double dt) {
   auto t0 = clock::now();
   const bool keys_changed = kick_and_drift(dt);
   auto t1 = clock::now();
-  sort_slots(true, keys_changed);
+  sort_slots(keys_changed);
   profile_.integrate += std::chrono::duration<double>(t1 - t0).count();
   profile_.shapes += std::chrono::duration<double>(clock::now() - t1).count();
   evaluate_forces(dt, true);  // the world-frame shapes in its first loop

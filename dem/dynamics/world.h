@@ -252,10 +252,11 @@ class World {
   void update_shapes();
   void update_shape(int i);
   // Re-sorts the contact stage's slots (below) by the bodies' current positions and lays out the moved ones anew.
-  // The slots in order of their keys: the keys as kick_and_drift() set them (`keys_set`; `changed`: whether any
-  // changed), or set here from the positions.
-  void sort_slots(bool keys_set, bool changed);
+  // The slots in order of their keys (set by kick_and_drift() or set_slot_keys(); `keys_changed`: whether any
+  // changed since the last sort).
+  void sort_slots(bool keys_changed);
   bool set_slot_key(int i);  // body i's slot key at its position; whether it changed
+  bool set_slot_keys();      // every body's; whether any changed
   // Body i's packed slot data, its vertices starting at `vert_begin` in world_xy_.
   struct SlotStatic;
   SlotStatic slot_static_of(int i, int vert_begin) const;
@@ -399,7 +400,8 @@ class World {
   double inverse_dt_ = 0.0;
   mutable MotionSummary summary_;             // see motion_summary()
   mutable bool summary_ready_ = false;
-  std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
+  mutable std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
+  void merge_motion_blocks() const;                  // motion_blocks_ into summary_, in block order
   // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
   struct PairResult {
     bool hit = false;

@@ -12,6 +12,9 @@
 namespace polyfloe::geometry {
 
 constexpr int kSpaceTileBits = 4;
+
+// The cell of the space order for bodies of a given mean equivalent radius [m]: 4 radii.
+inline double space_order_cell(double mean_radius) { return 4.0 * mean_radius; }
 constexpr int kSpaceTile = 1 << kSpaceTileBits;  // cells per tile side
 
 // The key of a position on cells of `cell` [m]; a non-finite or far-out position (beyond 2^31 cells) sorts last.

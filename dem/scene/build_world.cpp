@@ -299,7 +299,8 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     // arrays, so each thread of the step works on one stretch of the ice in every loop.
     double radius_sum = 0.0;
     for (const BodyDesc& desc : field.floes) radius_sum += desc.shape->equivalent_radius();
-    const double cell = 4.0 * radius_sum / static_cast<double>(std::max<std::size_t>(field.floes.size(), 1));
+    const double cell =
+        geometry::space_order_cell(radius_sum / static_cast<double>(std::max<std::size_t>(field.floes.size(), 1)));
     std::vector<std::pair<std::uint64_t, std::size_t>> order;
     order.reserve(field.floes.size());
     for (std::size_t k = 0; k < field.floes.size(); ++k)
