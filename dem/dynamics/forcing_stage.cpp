@@ -35,9 +35,12 @@ bool World::drift_from_linear_model(double dt) const {
 void World::drift_forces(double t) {
   const forcing::DriftSettings& s = settings_.drift;
   const std::size_t n = size();
-  drift_load_.assign(n, forcing::DriftLoad{});
   inverse_dt_ = 0.0;  // new drag matrices: compute_forces keeps their inverses anew
-  if (!s.any()) return;
+  if (!s.any()) {
+    drift_load_.assign(n, forcing::DriftLoad{});
+    return;
+  }
+  drift_load_.resize(n);  // every body's written in the loop below (not zeroed here first: a pass of its own)
 
   const FieldNow ocean(s.ocean.get(), t), wind(s.wind.get(), t);
   const bool sides = s.form_drag || s.moment_drag;
@@ -73,7 +76,10 @@ void World::drift_forces(double t) {
       __builtin_prefetch(ahead + 4);
       __builtin_prefetch(ahead + 8);
     }
-    if (!is_dynamic_[i]) continue;
+    if (!is_dynamic_[i]) {
+      drift_load_[i] = forcing::DriftLoad{};
+      continue;
+    }
     DriftScratch& scratch = drift_scratch_[static_cast<std::size_t>(polyfloe_thread_index())];
     // A field that has no water at a sample throws; no exception may leave an OpenMP loop, so the lowest failing
     // body's message is kept (the same for any thread count) and thrown after the loop.
@@ -135,8 +141,9 @@ void World::drift_forces(double t) {
       if (s.coriolis) forcing::add_coriolis(load, mass_[i], s.coriolis_parameter(pos_[i].y()), m.velocity);
       force_[i] += load.force;
       torque_[i] += load.torque;
-      if (semi_implicit) drift_load_[i] = load;
+      drift_load_[i] = semi_implicit ? load : forcing::DriftLoad{};
     } catch (const forcing::FieldError& e) {
+      drift_load_[i] = forcing::DriftLoad{};
       if (scratch.error_body < 0) {  // each thread meets its bodies in increasing order
         scratch.error_body = ii;
         scratch.error_text = e.what();
