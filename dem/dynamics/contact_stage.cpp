@@ -43,20 +43,16 @@ void World::grid_pairs(std::span<const geometry::Aabb> boxes) {
 }
 
 bool World::skin_outrun() {
+  if (skin_tested_) {  // by the step's first kick, at these positions
+    skin_tested_ = false;
+    return skin_outrun_;
+  }
   if (skin_pos_.size() != size()) return true;
   const double half = 0.5 * skin_;
   const int n = static_cast<int>(size());
   bool outrun = false;
-  // By the build's slot, so that each thread writes its own stretch of skin_moved_ (no cache line shared).
   POLYFLOE_OMP_FOR_ANY(threads_, outrun)
-  for (int k = 0; k < n; ++k) {
-    const int i = skin_body_[k];
-    // No vertex of body i has moved further than this since the build (a rotation by dθ moves a vertex at r by
-    // 2 r sin(dθ/2) <= r |dθ|).
-    const double moved = (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
-    skin_moved_[static_cast<std::size_t>(k)] = moved;
-    outrun = outrun || !(moved <= half);  // NaN counts as too far
-  }
+  for (int i = 0; i < n; ++i) outrun = !skin_within(static_cast<std::size_t>(i), half) || outrun;
   return outrun;
 }
 
@@ -150,19 +146,19 @@ void World::candidate_pairs() {
       const int i = slots_[k].body;
       const int built = skin_body_[k] == i ? k : skin_slot_[i];  // this body's slot at the build
       const int e0 = skin_off_[built], e1 = skin_off_[built + 1];
-      const double moved = skin_moved_[built];
+      const double moved = skin_moved_[static_cast<std::size_t>(i)];
       out.resize(m + static_cast<std::size_t>(e1 - e0));
       const geometry::Aabb box = boxes_[k];
       // Without branches (whether a listed pair overlaps is a coin toss to the predictor): every pair is written,
       // the kept ones advance the end.
       for (int e = e0; e < e1; ++e) {
         const int sb = skin_adj_[static_cast<std::size_t>(e)];  // the partner's slot at the build ...
-        const int j = skin_body_[sb];
+        const int j = skin_body_[sb];  // (its body)
         const int s = slots_[sb].body == j ? sb : body_slot_[j];  // ... and now
         const geometry::Aabb& o = boxes_[s];
         const int hit = static_cast<int>(box.lo.x() <= o.hi.x()) & static_cast<int>(o.lo.x() <= box.hi.x()) &
                         static_cast<int>(box.lo.y() <= o.hi.y()) & static_cast<int>(o.lo.y() <= box.hi.y()) &
-                        static_cast<int>(moved + skin_moved_[sb] >= skin_gap_[e]);
+                        static_cast<int>(moved + skin_moved_[static_cast<std::size_t>(j)] >= skin_gap_[e]);
         out[m] = {std::min(k, s), std::max(k, s), e};
         m += static_cast<std::size_t>(hit);
       }

@@ -17,7 +17,12 @@ bool World::kick_and_drift(double dt) {
   const double h = 0.5 * dt;
   const int n = static_cast<int>(size());
   bool changed = false;
-  POLYFLOE_OMP_FOR_ANY(threads_, changed)
+  // And how far each body's vertices may have moved since the neighbour lists were built (skin_outrun's test,
+  // done here while the body is at hand: the contact stage then needs no pass of its own).
+  const bool lists = skin_pos_.size() == size();
+  const double half_skin = 0.5 * skin_;
+  bool outrun = false;
+  POLYFLOE_OMP_FOR_ANY(threads_, changed, outrun)
   for (int ii = 0; ii < n; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
     Vec2 f = force_[i];
@@ -35,7 +40,10 @@ bool World::kick_and_drift(double dt) {
       yaw_[i] += dt * omega_[i];
     }
     changed = set_slot_key(ii) || changed;
+    if (lists) outrun = !skin_within(i, half_skin) || outrun;
   }
+  skin_tested_ = true;
+  skin_outrun_ = !lists || outrun;
   return changed;
 }
 

@@ -11,15 +11,15 @@
 // microseconds, and data fetched from the other core's cache, or chunks handed out one at a time, cost as much
 // again (docs/performance.md, "Two threads at a thousand floes").
 #define POLYFLOE_OMP_FOR(threads) POLYFLOE_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (threads > 1))
-// The same, each thread or-ing into its own copy of the bool `flag`, or-ed together at the end.
-#define POLYFLOE_OMP_FOR_ANY(threads, flag) \
-  POLYFLOE_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (threads > 1) reduction(|| : flag))
+// The same, each thread or-ing into its own copies of the bools named after `threads`, or-ed together at the end.
+#define POLYFLOE_OMP_FOR_ANY(threads, ...) \
+  POLYFLOE_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (threads > 1) reduction(|| : __VA_ARGS__))
 inline int polyfloe_thread_index() { return omp_get_thread_num(); }
 // Threads a run uses unless told: what OpenMP would use (the cores, or OMP_NUM_THREADS).
 inline int polyfloe_default_threads() { return omp_get_max_threads(); }
 #else
 #define POLYFLOE_OMP_FOR(threads)
-#define POLYFLOE_OMP_FOR_ANY(threads, flag)
+#define POLYFLOE_OMP_FOR_ANY(threads, ...)
 inline int polyfloe_thread_index() { return 0; }
 inline int polyfloe_default_threads() { return 1; }
 #endif

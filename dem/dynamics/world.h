@@ -382,7 +382,17 @@ class World {
   std::vector<std::uint64_t> skin_store_gen_;
   std::uint64_t history_gen_ = ~std::uint64_t{0};
   bool lists_built_ = true;  // the lists were built in this evaluation (their entries have no history yet)
-  std::vector<double> skin_moved_;  // by the build's slot: how far the body's vertices may have moved since [m]
+  std::vector<double> skin_moved_;  // by body: how far its vertices may have moved since the build [m]
+  // Body i's skin_moved_ at its current pose, set; whether it is within `half` (half the skin). No vertex of the
+  // body has moved further since the build (a rotation by dθ moves a vertex at r by 2 r sin(dθ/2) <= r |dθ|).
+  bool skin_within(std::size_t i, double half) {
+    const double moved = (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
+    skin_moved_[i] = moved;
+    return moved <= half;  // NaN counts as too far
+  }
+  // Whether kick_and_drift() has done skin_outrun's test at the current positions (the next contact stage takes
+  // its verdict, skin_outrun_, once; cleared where positions change from outside).
+  bool skin_tested_ = false, skin_outrun_ = true;
   std::vector<geometry::Aabb> skin_boxes_;
   std::uint64_t skin_builds_ = 0;
   // scratch

@@ -13,6 +13,9 @@
 //     states, contact counts, stored springs, shortest active contact and deepest overlap at every step.
 //   - A body whose state becomes non-finite sorts last, has no contact, and leaves the others' shapes and contacts
 //     intact (the broad phase used to hang on a NaN box).
+//   - A step's first kick tests how far the bodies moved against the lists' skin, and the contact stage takes that
+//     verdict; a step cut short between the two (a drift field that throws) leaves it unread. A state restored then,
+//     with floes moved onto others, is tested anew: its contacts are exactly the brute-force ones.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,6 +30,7 @@
 #include "contact/narrow_phase_planar.h"
 #include "dense_pack.h"
 #include "dynamics/world.h"
+#include "forcing/analytic_fields.h"
 #include "world_checks.h"
 
 using namespace polyfloe;
@@ -234,4 +238,35 @@ TEST(WorldOrder, AWorldWithoutBodiesStepsOnSeveralThreads) {
   EXPECT_EQ(w.narrow_phase_failures(), 0u);
   EXPECT_EQ(w.deepest_overlap().a, -1);
   EXPECT_EQ(w.shortest_active_contact().a, -1);
+}
+
+TEST(WorldOrder, AStateRestoredAfterAStepCutShortFindsItsOwnContacts) {
+  tsupport::PackSpec ps;
+  ps.walls = false;
+  ps.eps = -0.05;  // floes 5 % smaller than their cells: no contact
+  const tsupport::Pack pack = tsupport::make_pack(200, ps, 3u);
+  dynamics::WorldSettings ws = tsupport::no_drift();
+  ws.drift.skin_drag = true;
+  forcing::FieldSpec series;  // a current given until t = 1 s, an error after
+  series.kind = forcing::FieldKind::time_series;
+  series.times = {0.0, 1.0};
+  series.values = {{0.1, 0.0}, {0.1, 0.0}};
+  series.outside = forcing::TimeBoundary::error;
+  ws.drift.ocean = forcing::make_field(series);
+  dynamics::World w(ws);
+  for (const auto& d : pack.bodies) w.add_body(d);
+  const double dt = 0.4;
+  w.step(dt);
+  dynamics::WorldState s = w.state();  // at 0.4 s
+  ASSERT_EQ(w.contact_count(), 0u);
+  w.step(dt);
+  EXPECT_THROW(w.step(dt), forcing::FieldError);  // the drift at 1.2 s, after the kick moved the floes
+  // The state at 0.4 s with every tenth floe moved onto the next one (far beyond the skin from where it was).
+  for (std::size_t i = 0; i + 1 < s.position.size(); i += 10) s.position[i] = s.position[i + 1] + Vec2{1e-3, 0.0};
+  s.forces_ready = false;
+  w.restore(s);
+  w.compute_forces(0.0);
+  const IdPairs want = brute_force_contacts(w);
+  EXPECT_FALSE(want.empty());
+  EXPECT_EQ(contact_ids(w), want);
 }
