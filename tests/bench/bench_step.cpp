@@ -16,11 +16,13 @@
 //                      descriptions are gone (counter bytes_per_floe); the time reported is meaningless.
 //   BM_DensePackContactOnly/<N>  the DensePack with every drift term off: the contact dynamics alone, what the
 //                      LAMMPS disk pack of scripts/bench_lammps.sh does (it has no drag); up to 1.5M floes.
+//   BM_DensePackContactOnlySorted/<N>  the same in lattice order: how much of the growth with N is the bodies'
+//                      storage order (the World keeps the order bodies were added in).
 //
 // Bodies are stored in random order (no relation to position: bodies added in any order, e.g. a generated field
-// largest first, as scenes did before 2026-11-25) except in BM_DensePackSorted.
+// largest first, as scenes did before 2026-11-25) except in the Sorted cases.
 //
-// All but DensePackContactOnly have every default drift term on (form drag, drag moment, skin and air drag;
+// All but the ContactOnly cases have every default drift term on (form drag, drag moment, skin and air drag;
 // current 0.2 m/s, wind 10 m/s, not aligned); h = 1 m, dt = shortest_contact_duration(1 m/s) / 40, the time step a
 // scene would use.
 //
@@ -82,12 +84,13 @@ using tsupport::Pack;
 using tsupport::PackSpec;
 using tsupport::make_pack;
 
-enum class Kind { dense, dense_sorted, free, dense_contact };
+enum class Kind { dense, dense_sorted, free, dense_contact, dense_contact_sorted };
 
 const Pack& pack_for(int n, Kind kind) {
   // Generated once per (N, kind): repetitions rebuild the World from the same bodies but not the geometry.
   static std::map<std::pair<int, Kind>, Pack> cache;
-  if (kind == Kind::dense_contact) kind = Kind::dense;  // the same pack
+  if (kind == Kind::dense_contact) kind = Kind::dense;  // the same packs
+  if (kind == Kind::dense_contact_sorted) kind = Kind::dense_sorted;
   auto it = cache.find({n, kind});
   if (it != cache.end()) return it->second;
   PackSpec ps;
@@ -110,7 +113,7 @@ void run(benchmark::State& state, Kind kind) {
   dynamics::WorldSettings ws;
   ws.drift.ocean = forcing::make_field(forcing::FieldSpec::uniform({0.2, 0.05}));
   ws.drift.wind = forcing::make_field(forcing::FieldSpec::uniform({8.0, 6.0}));
-  if (kind == Kind::dense_contact)
+  if (kind == Kind::dense_contact || kind == Kind::dense_contact_sorted)
     ws.drift.form_drag = ws.drift.moment_drag = ws.drift.skin_drag = ws.drift.air_drag = ws.drift.coriolis = false;
   dynamics::World world(ws);
   world.set_threads(threads);
@@ -196,6 +199,7 @@ void BM_DensePack(benchmark::State& state) { run(state, Kind::dense); }
 void BM_DensePackSorted(benchmark::State& state) { run(state, Kind::dense_sorted); }
 void BM_FreeDrift(benchmark::State& state) { run(state, Kind::free); }
 void BM_DensePackContactOnly(benchmark::State& state) { run(state, Kind::dense_contact); }
+void BM_DensePackContactOnlySorted(benchmark::State& state) { run(state, Kind::dense_contact_sorted); }
 
 void BM_MemoryPerFloe(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
@@ -252,5 +256,9 @@ BENCHMARK(BM_DensePackContactOnly)->Args({15000, 1})->Iterations(100)->Unit(benc
 BENCHMARK(BM_DensePackContactOnly)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackContactOnly)->Args({1500000, 1})->Iterations(3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackContactOnly)->Args({150000, 2})->Iterations(10)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DensePackContactOnlySorted)->Args({1500, 1})->Iterations(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnlySorted)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnlySorted)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DensePackContactOnlySorted)->Args({1500000, 1})->Iterations(3)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
