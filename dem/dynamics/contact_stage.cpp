@@ -153,7 +153,7 @@ void World::candidate_pairs() {
       // the kept ones advance the end.
       for (int e = e0; e < e1; ++e) {
         const int sb = skin_adj_[static_cast<std::size_t>(e)];  // the partner's slot at the build ...
-        const int j = skin_body_[sb];  // (its body)
+        const int j = skin_body_[sb];
         const int s = slots_[sb].body == j ? sb : body_slot_[j];  // ... and now
         const geometry::Aabb& o = boxes_[s];
         const int hit = static_cast<int>(box.lo.x() <= o.hi.x()) & static_cast<int>(o.lo.x() <= box.hi.x()) &
