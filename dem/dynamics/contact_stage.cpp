@@ -43,9 +43,10 @@ void World::grid_pairs(std::span<const geometry::Aabb> boxes) {
 }
 
 bool World::skin_outrun() {
-  if (skin_tested_) {  // by the step's first kick, at these positions
-    skin_tested_ = false;
-    return skin_outrun_;
+  if (kick_outrun_) {  // tested by the step's first kick, at these positions
+    const bool verdict = *kick_outrun_;
+    kick_outrun_.reset();
+    return verdict;
   }
   if (skin_pos_.size() != size()) return true;
   const double half = 0.5 * skin_;

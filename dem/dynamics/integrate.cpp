@@ -42,8 +42,7 @@ bool World::kick_and_drift(double dt) {
     changed = set_slot_key(ii) || changed;
     if (lists) outrun = !skin_within(i, half_skin) || outrun;
   }
-  skin_tested_ = true;
-  skin_outrun_ = !lists || outrun;
+  kick_outrun_ = !lists || outrun;
   return changed;
 }
 

@@ -94,7 +94,7 @@ int World::add_body(const BodyDesc& d) {
                                            : dynamic_count_ > 0 ? 0.2 * radius_sum_ / dynamic_count_ : 1.0;
   reach_.push_back(d.shape->circumradius());
   skin_pos_.clear();  // rebuilt at the next evaluation
-  skin_tested_ = false;
+  kick_outrun_.reset();
   slots_.push_back({~std::uint64_t{0}, i});
   body_slot_.push_back(i);
   slot_static_.push_back(slot_static_of(i, vert_begin_[i]));
@@ -366,7 +366,7 @@ void World::restore(const WorldState& s) {
   worst_a_ = worst_b_ = -1;
   update_shapes();
   forces_ready_ = s.forces_ready;
-  skin_tested_ = false;  // the poses changed since any kick tested them
+  kick_outrun_.reset();  // the poses changed since any kick tested them
   summary_ready_ = false;
 }
 

@@ -350,7 +350,8 @@ class World {
   std::vector<SlotKey> slots_;      // slot -> body, sorted by (key, body)
   std::vector<int> body_slot_;      // body -> slot
   std::vector<std::pair<int, int>> moved_;  // slot intervals [first, last] the last sort permuted
-  bool slots_moved_ = true;  // some slot changed bodies since the neighbour lists were built (their pairs may be out of order)
+  // Some slot changed bodies since the neighbour lists were built (their pairs may be out of order).
+  bool slots_moved_ = true;
   std::vector<SlotStatic> slot_static_;
   std::vector<SlotState> slot_state_;
   std::vector<std::uint8_t> slot_dynamic_;
@@ -390,9 +391,9 @@ class World {
     skin_moved_[i] = moved;
     return moved <= half;  // NaN counts as too far
   }
-  // Whether kick_and_drift() has done skin_outrun's test at the current positions (the next contact stage takes
-  // its verdict, skin_outrun_, once; cleared where positions change from outside).
-  bool skin_tested_ = false, skin_outrun_ = true;
+  // skin_outrun's verdict from kick_and_drift()'s pass at the current positions, for the next contact stage to take
+  // once; none where positions changed from outside since (restore, add_body).
+  std::optional<bool> kick_outrun_;
   std::vector<geometry::Aabb> skin_boxes_;
   std::uint64_t skin_builds_ = 0;
   // scratch

@@ -476,8 +476,8 @@ RunSummary Simulation::run() {
     const double total = p.integrate + p.shapes + p.broad + p.narrow_and_law + p.forcing + p.bonds;
     const double per = 1e6 / (static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world_.size());
     std::fprintf(stderr,
-                 "profile (us per body-step): integrate %.3f, shapes + prediction %.3f, broad phase %.3f, narrow phase + law %.3f, "
-                 "drift forces %.3f, bonds %.3f; total %.3f (%zu bodies, %llu steps)\n",
+                 "profile (us per body-step): integrate %.3f, shapes + prediction %.3f, broad phase %.3f, "
+                 "narrow phase + law %.3f, drift forces %.3f, bonds %.3f; total %.3f (%zu bodies, %llu steps)\n",
                  p.integrate * per, p.shapes * per, p.broad * per, p.narrow_and_law * per, p.forcing * per,
                  p.bonds * per, total * per, world_.size(), static_cast<unsigned long long>(p.steps));
     const std::uint64_t builds = world_.neighbour_list_builds();
