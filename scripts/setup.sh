@@ -4,7 +4,8 @@
 #
 #   bash scripts/setup.sh          # build, test, run, plot
 #   bash scripts/setup.sh fuzz     # the same plus clang and its libFuzzer/sanitizer runtimes (scripts/fuzz.sh)
-#   bash scripts/setup.sh bench    # the same plus LAMMPS, the disk-pack anchor of scripts/bench_lammps.sh
+#   bash scripts/setup.sh bench    # the same plus LAMMPS (the disk-pack anchor of scripts/bench_lammps.sh) and
+#                                  # valgrind (scripts/count_instructions.sh)
 set -euo pipefail
 
 PACKAGES=(
@@ -16,7 +17,7 @@ PACKAGES=(
 )
 # Optional groups, named on the command line.
 FUZZ_PACKAGES=(clang libclang-rt-dev)
-BENCH_PACKAGES=(lammps)
+BENCH_PACKAGES=(lammps valgrind)
 
 for group in "$@"; do
   case "$group" in
