@@ -1,60 +1,108 @@
 #!/usr/bin/env bash
-# Instructions per floe-step, stage by stage, of one bench_step case, counted by valgrind's callgrind: a figure that
-# does not move with the machine's load (the same binary and case give the same count to a few parts in a million),
-# so that a change to the step can be judged on a shared machine where timings spread by 10 % or more. It counts
-# work, not time: cache misses and the instructions' latencies are not in it (time the case with bench_step too).
+# Instructions per floe-step, stage by stage, of a bench_step case or a stretch of a scene's run, counted by
+# valgrind's callgrind: a figure that does not move with the machine's load (the same binary and input give the
+# same count to a few parts in a million), so that a change to the step can be judged on a shared machine where
+# timings spread by 10 % or more. It counts work, not time: cache misses and the latencies of square roots and
+# divisions are not in it (time the case with bench_step, or the run, too).
 #
 #   bash scripts/count_instructions.sh                                   # BM_DensePackContactOnlySorted/1500/1
 #   bash scripts/count_instructions.sh -c BM_DensePackSorted/15000/1     # every drift term as well
+#   bash scripts/count_instructions.sh -s dem/scenes/channel.yaml --from 300 --for 1 \
+#       --set floe_field.concentration=0.6                               # the paper's channel run, jammed
 #   bash scripts/count_instructions.sh -b build-bench -o results/bench   # build folder, where the JSON goes
 #
-# Runs the case under callgrind (about 50 x slower than natively: half a minute for the default case), counting only
-# inside World::step, and prints each stage's inclusive count per floe-step and its share of the step; writes
-# OUT/instructions_<case>.json. Installs valgrind through scripts/setup.sh bench.
+# A bench_step case runs whole under callgrind (about 50 x slower than natively: half a minute for the default
+# case). A scene (-s) runs natively to --from seconds [s] (writing its checkpoint there), then on one thread under
+# callgrind for --for seconds more from that checkpoint (300 -> 301 s of the channel: 1,597 steps);
+# --set overrides go to both runs. Only World::step is counted. Prints each stage's inclusive count per floe-step
+# and its share of the step; writes OUT/instructions_<case or scene>.json. Installs valgrind (scripts/setup.sh
+# bench).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 CASE="BM_DensePackContactOnlySorted/1500/1"
+SCENE=""
+FROM=""
+FOR=""
+SETS=()
 BUILD_DIR=build-bench
 OUT=results/bench
+usage() { sed -n '2,20p' "$0"; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
     -c) CASE="$2"; shift 2 ;;
+    -s) SCENE="$2"; shift 2 ;;
+    --from) FROM="$2"; shift 2 ;;
+    --for) FOR="$2"; shift 2 ;;
+    --set) SETS+=(--set "$2"); shift 2 ;;
     -b) BUILD_DIR="$2"; shift 2 ;;
     -o) OUT="$2"; shift 2 ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+    -h|--help) usage; exit 0 ;;
     *) echo "count_instructions.sh: unknown argument '$1' (try -h)" >&2; exit 2 ;;
   esac
 done
-[[ "$CASE" =~ ^BM_[A-Za-z]+/[0-9]+/[12]$ ]] ||
-  { echo "count_instructions.sh: -c expects a bench_step case like BM_DensePackSorted/15000/1, got '$CASE'" >&2; exit 2; }
+number='^[0-9]+([.][0-9]+)?$'
+if [[ -n "$SCENE" ]]; then
+  [[ -f "$SCENE" ]] || { echo "count_instructions.sh: -s: no scene file '$SCENE'" >&2; exit 2; }
+  [[ "$FROM" =~ $number ]] && [[ "$FOR" =~ $number ]] && awk -v d="$FOR" 'BEGIN { exit !(d > 0) }' ||
+    { echo "count_instructions.sh: -s needs --from SECONDS (>= 0) and --for SECONDS (> 0), got '$FROM' and '$FOR'" >&2
+      exit 2; }
+else
+  [[ -z "$FROM$FOR${SETS[*]:-}" ]] ||
+    { echo "count_instructions.sh: --from, --for and --set go with -s SCENE" >&2; exit 2; }
+  [[ "$CASE" =~ ^BM_[A-Za-z]+/[0-9]+/[12]$ ]] ||
+    { echo "count_instructions.sh: -c expects a bench_step case like BM_DensePackSorted/15000/1, got '$CASE'" >&2
+      exit 2; }
+fi
 bash scripts/setup.sh bench
 if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]]; then
   cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON >/dev/null
 fi
-cmake --build "$BUILD_DIR" --target bench_step >/dev/null
-if ! "$BUILD_DIR/tests/bench_step" --benchmark_list_tests --benchmark_filter="^$CASE/" | grep -q .; then
-  echo "count_instructions.sh: bench_step has no case $CASE; its one-thread cases:" >&2
-  "$BUILD_DIR/tests/bench_step" --benchmark_list_tests | sed -n 's|^\(BM_[A-Za-z]*/[0-9]*/1\)/.*|  \1|p' >&2
-  exit 2
-fi
 mkdir -p "$OUT"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-name=${CASE//\//_}
-echo "callgrind: $BUILD_DIR/tests/bench_step --benchmark_filter='^$CASE/' (counting inside World::step)"
-valgrind --tool=callgrind --callgrind-out-file="$tmp/callgrind.out" --toggle-collect='polyfloe::dynamics::World::step(double)' \
-  "$BUILD_DIR/tests/bench_step" --benchmark_filter="^$CASE/" --benchmark_out="$tmp/bench.json" \
-  --benchmark_out_format=json >/dev/null 2>"$tmp/valgrind.log" ||
-  { echo "count_instructions.sh: valgrind failed (see below)" >&2; tail -20 "$tmp/valgrind.log" >&2; exit 1; }
+toggle='polyfloe::dynamics::World::step(double)'
+fail() { echo "count_instructions.sh: $1 (see below)" >&2; tail -20 "$2" >&2; exit 1; }
+if [[ -n "$SCENE" ]]; then
+  cmake --build "$BUILD_DIR" --target polyfloe >/dev/null
+  name=$(basename "$SCENE" .yaml)_${FROM}s
+  until=$(awk -v a="$FROM" -v b="$FOR" 'BEGIN { printf "%.10g", a + b }')
+  echo "native: $BUILD_DIR/polyfloe run $SCENE ${SETS[*]:-} --set run.duration=$FROM"
+  "$BUILD_DIR/polyfloe" run "$SCENE" -o "$tmp/run" "${SETS[@]}" --set run.duration="$FROM" >"$tmp/native.log" 2>&1 ||
+    fail "the run to $FROM s failed" "$tmp/native.log"
+  echo "callgrind: the same from its checkpoint to $until s, one thread (counting inside World::step)"
+  valgrind --tool=callgrind --callgrind-out-file="$tmp/callgrind.out" --toggle-collect="$toggle" \
+    "$BUILD_DIR/polyfloe" run "$SCENE" -o "$tmp/run" --restart "$tmp/run" "${SETS[@]}" --set run.duration="$until" \
+    --threads 1 --profile >/dev/null 2>"$tmp/valgrind.log" || fail "valgrind failed" "$tmp/valgrind.log"
+  # The profile line names the bodies: "... (1432 bodies, 1597 steps)".
+  bodies=$(sed -n 's/^profile (us per body-step):.*(\([0-9]*\) bodies, .*/\1/p' "$tmp/valgrind.log")
+  [[ -n "$bodies" ]] || fail "the run printed no profile" "$tmp/valgrind.log"
+  label="$SCENE ${SETS[*]:-} $FROM -> $until s"
+  unit=body
+else
+  cmake --build "$BUILD_DIR" --target bench_step >/dev/null
+  if ! "$BUILD_DIR/tests/bench_step" --benchmark_list_tests --benchmark_filter="^$CASE/" | grep -q .; then
+    echo "count_instructions.sh: bench_step has no case $CASE; its one-thread cases:" >&2
+    "$BUILD_DIR/tests/bench_step" --benchmark_list_tests | sed -n 's|^\(BM_[A-Za-z]*/[0-9]*/1\)/.*|  \1|p' >&2
+    exit 2
+  fi
+  name=${CASE//\//_}
+  echo "callgrind: $BUILD_DIR/tests/bench_step --benchmark_filter='^$CASE/' (counting inside World::step)"
+  valgrind --tool=callgrind --callgrind-out-file="$tmp/callgrind.out" --toggle-collect="$toggle" \
+    "$BUILD_DIR/tests/bench_step" --benchmark_filter="^$CASE/" --benchmark_out="$tmp/bench.json" \
+    --benchmark_out_format=json >/dev/null 2>"$tmp/valgrind.log" || fail "valgrind failed" "$tmp/valgrind.log"
+  bodies=$(/usr/bin/python3 -c '
+import json, sys
+runs = [b for b in json.load(open(sys.argv[1]))["benchmarks"] if b.get("run_type", "iteration") == "iteration"]
+print(runs[0]["floes"] if runs else "")' "$tmp/bench.json")
+  [[ -n "$bodies" ]] || { echo "count_instructions.sh: bench_step ran no case matching $CASE" >&2; exit 1; }
+  label="$CASE"
+  unit=floe
+fi
 callgrind_annotate --inclusive=yes --tree=caller "$tmp/callgrind.out" >"$tmp/annotate.txt" 2>/dev/null
-/usr/bin/python3 - "$tmp/annotate.txt" "$tmp/bench.json" "$CASE" "$OUT/instructions_$name.json" <<'EOF'
+/usr/bin/python3 - "$tmp/annotate.txt" "$bodies" "$label" "$OUT/instructions_$name.json" "$unit" <<'EOF'
 import json, re, sys
 
-annotate, bench, case, out = sys.argv[1:5]
-runs = [b for b in json.load(open(bench))["benchmarks"] if b.get("run_type", "iteration") == "iteration"]
-if not runs:
-    sys.exit(f"count_instructions.sh: bench_step ran no case matching {case}")
-floes = float(runs[0]["floes"])
+annotate, floes, case, out, unit = sys.argv[1], float(sys.argv[2]), sys.argv[3], sys.argv[4], sys.argv[5]
 
 # The stages, as the functions that hold them (inclusive counts; indented ones are inside the one above).
 stages = [
@@ -101,15 +149,17 @@ if not steps or not inclusive.get(step_key):
     sys.exit("count_instructions.sh: World::step was not found in the profile")
 total = inclusive[step_key]
 rows = []
-print(f"{case}: {floes:.0f} floes, {steps} steps, {total / (steps * floes):.0f} instructions per floe-step")
-print(f"{'stage':<40} {'per floe-step':>14} {'share':>7}")
+plural = "bodies" if unit == "body" else "floes"
+print(f"{case}: {floes:.0f} {plural}, {steps} steps, {total / (steps * floes):.0f} instructions per {unit}-step")
+print(f"{'stage':<40} {'per ' + unit + '-step':>14} {'share':>7}")
 for label, key, depth in stages:
     if key not in inclusive:
         continue
     per = inclusive[key] / (steps * floes)
-    rows.append({"stage": label, "function": key, "instructions_per_floe_step": per, "share": inclusive[key] / total})
+    share = inclusive[key] / total
+    rows.append({"stage": label, "function": key, f"instructions_per_{unit}_step": per, "share": share})
     print(f"{'  ' * depth + label:<40} {per:>14.0f} {100.0 * inclusive[key] / total:>6.1f}%")
-json.dump({"case": case, "floes": floes, "steps": steps, "instructions": total, "stages": rows}, open(out, "w"),
+json.dump({"case": case, plural: floes, "steps": steps, "instructions": total, "stages": rows}, open(out, "w"),
           indent=1)
 print(f"written: {out}")
 EOF
