@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Instructions per floe-step, stage by stage, of a bench_step case or a stretch of a scene's run, counted by
-# valgrind's callgrind: a figure that does not move with the machine's load (the same binary and input give the
-# same count to a few parts in a million), so that a change to the step can be judged on a shared machine where
-# timings spread by 10 % or more. It counts work, not time: cache misses and the latencies of square roots and
+# valgrind's callgrind: a figure that does not move with the machine's load (the same binary and input gave the
+# same count per floe-step, to the instruction, in repeated runs), so that a change to the step can be judged on a
+# shared machine where timings spread by 10 % or more. It counts work, not time: cache misses and the latencies of square roots and
 # divisions are not in it (time the case with bench_step, or the run, too).
 #
 #   bash scripts/count_instructions.sh                                   # BM_DensePackContactOnlySorted/1500/1
@@ -26,7 +26,7 @@ FOR=""
 SETS=()
 BUILD_DIR=build-bench
 OUT=results/bench
-usage() { sed -n '2,20p' "$0"; }
+usage() { sed -n '2,19p' "$0"; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
     -c) CASE="$2"; shift 2 ;;
