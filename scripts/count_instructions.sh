@@ -102,7 +102,7 @@ callgrind_annotate --inclusive=yes --tree=caller "$tmp/callgrind.out" >"$tmp/ann
 /usr/bin/python3 - "$tmp/annotate.txt" "$bodies" "$label" "$OUT/instructions_$name.json" "$unit" <<'EOF'
 import json, re, sys
 
-annotate, floes, case, out, unit = sys.argv[1], float(sys.argv[2]), sys.argv[3], sys.argv[4], sys.argv[5]
+annotate, count, case, out, unit = sys.argv[1], float(sys.argv[2]), sys.argv[3], sys.argv[4], sys.argv[5]
 
 # The stages, as the functions that hold them (inclusive counts; indented ones are inside the one above).
 stages = [
@@ -120,8 +120,10 @@ stages = [
     ("final kick", "polyfloe::dynamics::World::kick_implicit(double)", 1),
 ]
 # callgrind_annotate --tree=caller: "  COST (PCT)  *  file:function [object]" opens each function's block (its
-# inclusive cost), preceded by "  COST (PCT)  <  file:caller (Nx) [object]" lines (calls from each caller).
-inclusive, calls = {}, {}
+# inclusive cost), preceded by "  COST (PCT)  <  file:caller (Nx) [object]" lines (calls from each caller): those
+# of World::step are the steps.
+step_key = stages[0][1]
+inclusive, steps = {}, 0
 pending = []
 line_re = re.compile(r"^\s*([\d,]+)\s+\([\d.\s]+%\)\s+([<*>])\s+(.*)$")
 for line in open(annotate):
@@ -141,25 +143,24 @@ for line in open(annotate):
             # its own file holds the inclusive cost, the largest.
             if fn.startswith(key) and "._omp_fn" not in fn and cost > inclusive.get(key, 0):
                 inclusive[key] = cost
-                calls[key] = sum(pending)
+                if key == step_key:
+                    steps = sum(pending)
         pending = []
-step_key = stages[0][1]
-steps = calls.get(step_key, 0)
 if not steps or not inclusive.get(step_key):
     sys.exit("count_instructions.sh: World::step was not found in the profile")
 total = inclusive[step_key]
 rows = []
 plural = "bodies" if unit == "body" else "floes"
-print(f"{case}: {floes:.0f} {plural}, {steps} steps, {total / (steps * floes):.0f} instructions per {unit}-step")
+print(f"{case}: {count:.0f} {plural}, {steps} steps, {total / (steps * count):.0f} instructions per {unit}-step")
 print(f"{'stage':<40} {'per ' + unit + '-step':>14} {'share':>7}")
 for label, key, depth in stages:
     if key not in inclusive:
         continue
-    per = inclusive[key] / (steps * floes)
+    per = inclusive[key] / (steps * count)
     share = inclusive[key] / total
     rows.append({"stage": label, "function": key, f"instructions_per_{unit}_step": per, "share": share})
-    print(f"{'  ' * depth + label:<40} {per:>14.0f} {100.0 * inclusive[key] / total:>6.1f}%")
-json.dump({"case": case, plural: floes, "steps": steps, "instructions": total, "stages": rows}, open(out, "w"),
+    print(f"{'  ' * depth + label:<40} {per:>14.0f} {100.0 * share:>6.1f}%")
+json.dump({"case": case, plural: count, "steps": steps, "instructions": total, "stages": rows}, open(out, "w"),
           indent=1)
 print(f"written: {out}")
 EOF
