@@ -76,7 +76,7 @@ if [[ -n "$SCENE" ]]; then
   # The profile line names the bodies: "... (1432 bodies, 1597 steps)".
   bodies=$(sed -n 's/^profile (us per body-step):.*(\([0-9]*\) bodies, .*/\1/p' "$tmp/valgrind.log")
   [[ -n "$bodies" ]] || fail "the run printed no profile" "$tmp/valgrind.log"
-  label="$SCENE ${SETS[*]:-} $FROM -> $until s"
+  label="$SCENE${SETS[*]:+ ${SETS[*]}}: $FROM -> $until s"
   unit=body
 else
   cmake --build "$BUILD_DIR" --target bench_step >/dev/null
