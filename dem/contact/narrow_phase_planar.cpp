@@ -4,9 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "geometry/inside_edges.h"
 
 namespace polyfloe::contact {
 
@@ -95,41 +93,9 @@ EdgeLine b_edge(std::span<const Vec2> b, const Vec2& origin, int j) {
 }
 
 // Whether v (relative to `origin`) lies inside every edge of the counter-clockwise polygon `poly`, by more than
-// kTopologyMargin times each edge's length. Edge k runs from q0 = poly[k - 1] to q1 = poly[k] (edge 0 from the last
-// vertex), relative to `origin`: inside when perp_right(e) . (v - q0) < -kTopologyMargin |e|^2, e = q1 - q0. Every
-// edge is tested (the answer is whether all pass), two at a time with SSE2; each lane does the scalar operations in
-// the same order, so the answer is the same bit for bit.
+// kTopologyMargin times each edge's length.
 bool strictly_inside(std::span<const Vec2> poly, const Vec2& origin, const Vec2& v) {
-  const std::size_t n = poly.size();
-  std::size_t k = 0;
-  bool inside = true;
-#if defined(__SSE2__)
-  const __m128d o = _mm_loadu_pd(origin.data());
-  const __m128d vx = _mm_set1_pd(v.x()), vy = _mm_set1_pd(v.y());
-  const __m128d neg_margin = _mm_set1_pd(-kTopologyMargin);
-  __m128d pass = _mm_castsi128_pd(_mm_set1_epi32(-1));
-  __m128d prev = _mm_sub_pd(_mm_loadu_pd(poly[n - 1].data()), o);  // (x, y) of poly[k - 1]
-  for (; k + 2 <= n; k += 2) {
-    const __m128d p0 = _mm_sub_pd(_mm_loadu_pd(poly[k].data()), o);
-    const __m128d p1 = _mm_sub_pd(_mm_loadu_pd(poly[k + 1].data()), o);
-    // Lanes: edges k and k + 1.
-    const __m128d q0x = _mm_unpacklo_pd(prev, p0), q0y = _mm_unpackhi_pd(prev, p0);
-    const __m128d q1x = _mm_unpacklo_pd(p0, p1), q1y = _mm_unpackhi_pd(p0, p1);
-    const __m128d ex = _mm_sub_pd(q1x, q0x), ey = _mm_sub_pd(q1y, q0y);
-    const __m128d dx = _mm_sub_pd(vx, q0x), dy = _mm_sub_pd(vy, q0y);
-    const __m128d val = _mm_sub_pd(_mm_mul_pd(ey, dx), _mm_mul_pd(ex, dy));
-    const __m128d len2 = _mm_add_pd(_mm_mul_pd(ex, ex), _mm_mul_pd(ey, ey));
-    pass = _mm_and_pd(pass, _mm_cmplt_pd(val, _mm_mul_pd(neg_margin, len2)));
-    prev = p1;
-  }
-  inside = _mm_movemask_pd(pass) == 3;
-#endif
-  for (; k < n; ++k) {  // the last edge of an odd count (every edge without SSE2)
-    const Vec2 q0 = poly[(k == 0) ? n - 1 : k - 1] - origin, q1 = poly[k] - origin;
-    const Vec2 e = q1 - q0;
-    inside = inside && perp_right(e).dot(v - q0) < -kTopologyMargin * e.squaredNorm();
-  }
-  return inside;
+  return geometry::inside_all_edges(poly, origin, v, kTopologyMargin);
 }
 
 // Vertices of A inside B (a_first + 1 ... a_last) and of B inside A (b_first ... b_last - 1) in a topology.
