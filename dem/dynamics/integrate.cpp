@@ -164,9 +164,10 @@ void World::update_shape(int i) {
   const Vec2* local = local_xy_.data() + vert_off_[i];
   const int count = vert_off_[i + 1] - vert_off_[i];
   Vec2* out = world_xy_.data() + vert_begin_[i];
-  geometry::Aabb box{pos_[i], pos_[i]};
+  const Vec2 p = pos_[i];  // (held in a register: the stores to `out` could otherwise alias it)
+  geometry::Aabb box{p, p};
   for (int k = 0; k < count; ++k) {
-    out[k] = pos_[i] + geometry::rotate(local[k], c, s);
+    out[k] = p + geometry::rotate(local[k], c, s);
     box.lo = box.lo.cwiseMin(out[k]);
     box.hi = box.hi.cwiseMax(out[k]);
   }
