@@ -45,22 +45,26 @@ bool inside_sse2(std::span<const Vec2> poly, const Vec2& origin, const Vec2& v, 
   return inside;
 }
 
-// Four edges at a time: edges 1 .. n - 1 in blocks of four (the last block starts at n - 4, so it may test a few
-// edges again), where each block's q0 and q1 are two unaligned loads each; edge 0, which wraps around, alone.
+// Four edges at a time, in blocks of four from edge 0 (the last block starts at n - 4, so it may test a few edges
+// again): each block's q1 is two unaligned loads, and so is its q0 but for the first block's, whose first vertex
+// wraps around to poly[n - 1].
 __attribute__((target("avx2"))) bool inside_avx2(std::span<const Vec2> poly, const Vec2& origin, const Vec2& v,
                                                  double margin) {
   const std::size_t n = poly.size();
-  if (n < 5) return inside_sse2(poly, origin, v, margin);
+  if (n < 4) return inside_sse2(poly, origin, v, margin);
   const double* p = poly.data()->data();  // x0, y0, x1, y1, ...
   const __m256d o = _mm256_setr_pd(origin.x(), origin.y(), origin.x(), origin.y());
   const __m256d vx = _mm256_set1_pd(v.x()), vy = _mm256_set1_pd(v.y());
   const __m256d neg_margin = _mm256_set1_pd(-margin);
   __m256d pass = _mm256_castsi256_pd(_mm256_set1_epi32(-1));
-  for (std::size_t k = 1;; k += 4) {
+  for (std::size_t k = 0;; k += 4) {
     if (k + 4 > n) k = n - 4;
     const __m256d l0 = _mm256_sub_pd(_mm256_loadu_pd(p + 2 * k), o);      // poly[k], poly[k + 1]
     const __m256d l1 = _mm256_sub_pd(_mm256_loadu_pd(p + 2 * k + 4), o);  // poly[k + 2], poly[k + 3]
-    const __m256d m0 = _mm256_sub_pd(_mm256_loadu_pd(p + 2 * k - 2), o);  // poly[k - 1], poly[k]
+    const __m256d m0 = _mm256_sub_pd(  // poly[k - 1], poly[k]
+        k == 0 ? _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p + 2 * (n - 1))), _mm_loadu_pd(p), 1)
+               : _mm256_loadu_pd(p + 2 * k - 2),
+        o);
     const __m256d m1 = _mm256_sub_pd(_mm256_loadu_pd(p + 2 * k + 2), o);  // poly[k + 1], poly[k + 2]
     // Lanes: edges k, k + 2, k + 1, k + 3 (the order does not matter: every lane must pass).
     const __m256d q1x = _mm256_unpacklo_pd(l0, l1), q1y = _mm256_unpackhi_pd(l0, l1);
@@ -72,7 +76,7 @@ __attribute__((target("avx2"))) bool inside_avx2(std::span<const Vec2> poly, con
     pass = _mm256_and_pd(pass, _mm256_cmp_pd(val, _mm256_mul_pd(neg_margin, len2), _CMP_LT_OQ));
     if (k + 4 >= n) break;
   }
-  return _mm256_movemask_pd(pass) == 15 && inside_edge(poly, origin, v, margin, 0);
+  return _mm256_movemask_pd(pass) == 15;
 }
 
 bool detect_avx2() {
