@@ -219,6 +219,25 @@ TEST(WorldOrder, TheThreadCountChangesNothing) {
       ASSERT_EQ(w.deepest_overlap().ratio, one.deepest_overlap().ratio) << "threads " << w.threads();
       ASSERT_EQ(w.deepest_overlap().a, one.deepest_overlap().a) << "threads " << w.threads();
       ASSERT_EQ(w.contact_cache().entries(), one.contact_cache().entries()) << "threads " << w.threads();
+      ASSERT_EQ(w.profile().reused, one.profile().reused) << "threads " << w.threads() << ", step " << step;
+      // The contact records listed for output (from the pairs' evaluations, in pair order) are the same too.
+      if (step % 10 == 0) {
+        const std::vector<dynamics::ContactRecord>&c1 = one.contacts(), &ck = w.contacts();
+        ASSERT_EQ(ck.size(), one.contact_count()) << "threads " << w.threads() << ", step " << step;
+        ASSERT_EQ(ck.size(), c1.size()) << "threads " << w.threads() << ", step " << step;
+        for (std::size_t c = 0; c < c1.size(); ++c) {
+          ASSERT_EQ(ck[c].a, c1[c].a) << "threads " << w.threads() << ", contact " << c;
+          ASSERT_EQ(ck[c].b, c1[c].b) << "threads " << w.threads() << ", contact " << c;
+          ASSERT_EQ(ck[c].geometry.normal, c1[c].geometry.normal) << "threads " << w.threads();
+          ASSERT_EQ(ck[c].geometry.point, c1[c].geometry.point) << "threads " << w.threads();
+          ASSERT_EQ(ck[c].geometry.depth, c1[c].geometry.depth) << "threads " << w.threads();
+          ASSERT_EQ(ck[c].geometry.area, c1[c].geometry.area) << "threads " << w.threads();
+          ASSERT_EQ(ck[c].normal_force, c1[c].normal_force) << "threads " << w.threads();
+          ASSERT_EQ(ck[c].tangential_force, c1[c].tangential_force) << "threads " << w.threads();
+          ASSERT_EQ(ck[c].sliding, c1[c].sliding) << "threads " << w.threads();
+          ASSERT_EQ(ck[c].force, c1[c].force) << "threads " << w.threads();
+        }
+      }
       for (int i = 0; i < static_cast<int>(w.size()); ++i) {
         ASSERT_EQ(w.forces()[i], one.forces()[i]) << "threads " << w.threads() << ", body " << i << ", step " << step;
         ASSERT_EQ(w.torques()[i], one.torques()[i]) << "threads " << w.threads() << ", body " << i;
