@@ -30,10 +30,8 @@ done
 
 bash scripts/setup.sh bench
 BUILD_DIR=build-bench
-if [[ ! -f "$BUILD_DIR/build.ninja" ]]; then
-  cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON >/dev/null
-fi
-cmake --build "$BUILD_DIR" --target bench_step >/dev/null
+source scripts/bench_build.sh
+bench_build "$BUILD_DIR" bench_step >/dev/null
 
 OUT=results/bench
 mkdir -p "$OUT"

@@ -54,16 +54,14 @@ else
       exit 2; }
 fi
 bash scripts/setup.sh bench
-if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]]; then
-  cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON >/dev/null
-fi
+source scripts/bench_build.sh
 mkdir -p "$OUT"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 toggle='polyfloe::dynamics::World::step(double)'
 fail() { echo "count_instructions.sh: $1 (see below)" >&2; tail -20 "$2" >&2; exit 1; }
 if [[ -n "$SCENE" ]]; then
-  cmake --build "$BUILD_DIR" --target polyfloe >/dev/null
+  bench_build "$BUILD_DIR" polyfloe >/dev/null
   name=$(basename "$SCENE" .yaml)_${FROM}s
   until=$(awk -v a="$FROM" -v b="$FOR" 'BEGIN { printf "%.10g", a + b }')
   echo "native: $BUILD_DIR/polyfloe run $SCENE ${SETS[*]:-} --set run.duration=$FROM"
@@ -79,7 +77,7 @@ if [[ -n "$SCENE" ]]; then
   label="$SCENE${SETS[*]:+ ${SETS[*]}}: $FROM -> $until s"
   unit=body
 else
-  cmake --build "$BUILD_DIR" --target bench_step >/dev/null
+  bench_build "$BUILD_DIR" bench_step >/dev/null
   if ! "$BUILD_DIR/tests/bench_step" --benchmark_list_tests --benchmark_filter="^$CASE/" | grep -q .; then
     echo "count_instructions.sh: bench_step has no case $CASE; its one-thread cases:" >&2
     "$BUILD_DIR/tests/bench_step" --benchmark_list_tests | sed -n 's|^\(BM_[A-Za-z]*/[0-9]*/1\)/.*|  \1|p' >&2

@@ -43,13 +43,8 @@ run() {
 }
 
 # Configure (Release) and build only the benchmark targets it runs.
-generator=()
-if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
-run cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
-if ! run cmake --build "$BUILD_DIR" --target bench_narrow_phase bench_step bench_drift bench_floe_field bench_bonds -j "$(nproc)"; then
-  echo "run_benchmarks.sh: build failed (the benchmark targets need Google Benchmark: apt-get install libbenchmark-dev)" >&2
-  exit 1
-fi
+source scripts/bench_build.sh
+bench_build "$BUILD_DIR" bench_narrow_phase bench_step bench_drift bench_floe_field bench_bonds || exit 1
 
 mkdir -p "$OUT_DIR"
 {

@@ -30,10 +30,9 @@ run() {
   "$@"
 }
 
-generator=()
-if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
-run cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
-run cmake --build "$BUILD_DIR" --target bench_narrow_phase bench_step polyfloe -j "$(nproc)" >/dev/null
+bash scripts/setup.sh bench  # Google Benchmark, LAMMPS
+source scripts/bench_build.sh
+bench_build "$BUILD_DIR" bench_narrow_phase bench_step polyfloe
 
 aggregates=(--benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true)
 run "$BUILD_DIR/tests/bench_narrow_phase" \
