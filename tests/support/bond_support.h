@@ -1,7 +1,9 @@
 // What the bond validations share (tests/validation/test_bonds.cpp, test_frozen_sheet.cpp): the sea ice of the
-// paper's Tab. 1, a bond material, and a time step safely inside the bonds' critical one.
+// paper's Tab. 1, a bond material, a time step safely inside the bonds' critical one, and the loaded strips'
+// mean displacement.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -32,6 +34,27 @@ inline double safe_dt(const dynamics::World& w) {
     inertia.push_back(w.inertia(static_cast<int>(i)));
   }
   return 0.5 * w.bonds()->critical_time_step(mass, inertia);
+}
+
+// Mean displacement of the `loaded` elements under a total load ramped to `load` [N] over `ramp` seconds (shared
+// equally among them), then held for `hold` seconds; averaged over the last quarter of the hold [m]. Steps at
+// safe_dt.
+inline geometry::Vec2 mean_displacement_under_load(dynamics::World& w, const std::vector<int>& loaded,
+                                                   geometry::Vec2 load, double ramp, double hold) {
+  const double dt = safe_dt(w);
+  const std::vector<geometry::Vec2> x0(w.positions().begin(), w.positions().end());
+  geometry::Vec2 sum{0, 0};
+  double n = 0;
+  while (w.time() < ramp + hold) {
+    const double f = std::min(1.0, w.time() / ramp);
+    for (int e : loaded) w.set_external_load(e, f * load / static_cast<double>(loaded.size()), 0.0);
+    w.step(dt);
+    if (w.time() > ramp + 0.75 * hold) {
+      for (int e : loaded) sum += w.positions()[static_cast<std::size_t>(e)] - x0[static_cast<std::size_t>(e)];
+      n += static_cast<double>(loaded.size());
+    }
+  }
+  return sum / n;
 }
 
 }  // namespace polyfloe::tsupport::bond

@@ -309,24 +309,9 @@ Strip bonded_strip(int nx, int ny, double s, double zeta) {
 // Mean displacement of the free end's column under a load ramped to (fx, fy) in total over `ramp` seconds, then
 // held; averaged over the last quarter of the hold.
 Vec2 tip_displacement(Strip& st, Vec2 load, double ramp, double hold) {
-  dynamics::World& w = st.world;
-  const double dt = safe_dt(w);
-  std::vector<Vec2> x0(w.positions().begin(), w.positions().end());
-  Vec2 sum{0, 0};
-  double n = 0;
-  while (w.time() < ramp + hold) {
-    const double f = std::min(1.0, w.time() / ramp);
-    for (int j = 0; j < st.ny; ++j) w.set_external_load(st.index(st.nx, j), f * load / st.ny, 0.0);
-    w.step(dt);
-    if (w.time() > ramp + 0.75 * hold) {
-      for (int j = 0; j < st.ny; ++j) {
-        const auto k = static_cast<std::size_t>(st.index(st.nx, j));
-        sum += w.positions()[k] - x0[k];
-      }
-      n += st.ny;
-    }
-  }
-  return sum / n;
+  std::vector<int> column;
+  for (int j = 0; j < st.ny; ++j) column.push_back(st.index(st.nx, j));
+  return mean_displacement_under_load(st.world, column, load, ramp, hold);
 }
 
 TEST(Bonds, CantileverDeflectionMatchesEulerBernoulli) {

@@ -201,37 +201,18 @@ VoronoiStrip voronoi_strip() {
   return st;
 }
 
-// Ramps a total load onto the loaded elements, holds it, and returns the mean displacement of those elements over
-// the last quarter of the hold.
-Vec2 strip_end_displacement(VoronoiStrip& st, Vec2 load, double ramp, double hold) {
-  dynamics::World& w = st.world;
-  const double dt = safe_dt(w);
-  std::vector<Vec2> x0(w.positions().begin(), w.positions().end());
-  Vec2 sum{0, 0};
-  double n = 0;
-  while (w.time() < ramp + hold) {
-    const double f = std::min(1.0, w.time() / ramp);
-    for (int e : st.loaded) w.set_external_load(e, f * load / static_cast<double>(st.loaded.size()), 0.0);
-    w.step(dt);
-    if (w.time() > ramp + 0.75 * hold) {
-      for (int e : st.loaded) sum += w.positions()[static_cast<std::size_t>(e)] - x0[static_cast<std::size_t>(e)];
-      n += static_cast<double>(st.loaded.size());
-    }
-  }
-  return sum / n;
-}
-
 TEST(FrozenSheet, VoronoiCantileverMatchesEulerBernoulliWithItsOwnModulus) {
   // A 60 m x 10 m strip of ~85 Voronoi cells, clamped at its left end: E_eff from an axial pull of the same strip,
   // then the end deflection under a transverse end load against P L^3 / (3 E_eff I), L from the clamp faces'
   // fixed centroids to the loaded centroids (the same strip at 100 m with 2.5 m cells: ratio 0.924).
   VoronoiStrip pull = voronoi_strip();
   const double P_axial = 1.0e6, L = pull.load_x - pull.clamp_x, w = 10.0, I = kH * w * w * w / 12.0;
-  const Vec2 u = strip_end_displacement(pull, {P_axial, 0.0}, 5.0, 5.0);
+  const Vec2 u = mean_displacement_under_load(pull.world, pull.loaded, {P_axial, 0.0}, 5.0, 5.0);
   const double e_eff = P_axial * L / (w * kH * u.x());
   VoronoiStrip bend = voronoi_strip();
   const double P = 1.0e4;  // [N]
-  const Vec2 d = strip_end_displacement(bend, {0.0, P}, 12.0, 8.0);  // the first bending period is ~2 s
+  // (the first bending period is ~2 s)
+  const Vec2 d = mean_displacement_under_load(bend.world, bend.loaded, {0.0, P}, 12.0, 8.0);
   const double euler_bernoulli = P * L * L * L / (3.0 * e_eff * I);
   std::printf("Voronoi strip (%zu elements, L = %.1f m): axial E_eff / E = %.3f; end deflection %.5f m, "
               "Euler-Bernoulli %.5f m (ratio %.3f)\n",
