@@ -34,7 +34,7 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_scene_parser fuzz_polygon)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_scene_parser fuzz_polygon fuzz_yaml_aliases fuzz_checkpoint)
 
 bash scripts/setup.sh fuzz
 
@@ -59,6 +59,7 @@ target_args() {
               -artifact_prefix="$WORK/artifacts/$t-")
   case "$t" in
     fuzz_scene_parser) a+=(-max_len=8192 -dict=tests/fuzz/scene.dict) ;;
+    fuzz_yaml_aliases|fuzz_checkpoint) a+=(-max_len=512) ;;
     *) a+=(-max_len=4096) ;;
   esac
   mkdir -p "$WORK/corpus/$t"

@@ -22,6 +22,7 @@
 #include "dynamics/parallel.h"
 #include "forcing/field.h"
 #include "geometry/polygon.h"
+#include "run/output_folder.h"
 #include "run/simulation.h"
 #include "run/spatial_run.h"
 #include "scene/field_statistics.h"
@@ -90,6 +91,7 @@ Args parse_args(int argc, char** argv) {
     if (s == "-o" || s == "--output") {
       if (a.command != "run") throw UsageError("option " + s + " applies to 'run' only");
       a.output = value(i, s);
+      if (a.output.empty()) throw UsageError("option " + s + " needs a folder name, got ''");
     } else if (s == "--set") {
       const std::string kv = value(i, s);
       if (kv.find('=') == std::string::npos || kv.front() == '=')
@@ -120,24 +122,6 @@ Args parse_args(int argc, char** argv) {
   }
   if (a.scene.empty()) throw UsageError("no scene file given");
   return a;
-}
-
-// Why `dir` cannot be used as the output folder (empty if it can): it, or the nearest folder above it that exists,
-// must be a folder this process may write into. Checked before anything is created.
-std::string unwritable_reason(const std::filesystem::path& dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::path p = fs::absolute(dir, ec);
-  if (ec) return ec.message();
-  while (!fs::exists(p, ec)) {
-    if (!p.has_parent_path() || p.parent_path() == p) return "no existing folder above it";
-    p = p.parent_path();
-  }
-  if (!fs::is_directory(p, ec)) return p.string() + " is not a folder";
-  if (access(p.c_str(), W_OK | X_OK) != 0)
-    return (p == fs::absolute(dir) ? std::string("it is") : p.string() + " is") + " not writable (" +
-           std::strerror(errno) + ")";
-  return {};
 }
 
 // The lines removed from `was` ("  - ") and added in `now` ("  + "), in order: a longest-common-subsequence diff
@@ -193,6 +177,9 @@ template <class F>
 int guarded_run(F&& body) {
   try {
     return body();
+  } catch (const run::OutputFolderError& e) {  // the folder changed between the check and the run
+    std::cerr << "\npolyfloe: error: " << e.what() << "\n";
+    return run::kExitBadInput;
   } catch (const run::InstabilityError& e) {
     std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
     return run::kExitUnstable;
@@ -236,9 +223,11 @@ int run_spatial_scene(const Args& args, const scene::Scene& sc) {
   run::RunOptions opt;
   opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
   opt.version = POLYFLOE_VERSION;
-  if (const std::string why = unwritable_reason(opt.output_dir); !why.empty()) {
-    std::cerr << "polyfloe: error: output folder " << opt.output_dir.string() << " cannot be written: " << why
-              << "; choose another with -o DIR\n";
+  try {
+    opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
+    run::OutputFolder::check(opt.output_dir, run::OutputFolder::Mode::fresh);
+  } catch (const run::OutputFolderError& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
     return run::kExitBadInput;
   }
   return guarded_run([&] {
@@ -333,14 +322,20 @@ int main(int argc, char** argv) {
     if (!args.restart.empty()) {
       restart_file = run::find_checkpoint(args.restart);
       restart = run::read_checkpoint(restart_file);
+      if (sc.time.duration < restart->world.time * (1.0 - 1e-12)) {
+        std::ostringstream why;
+        why << "run.duration = " << sc.time.duration << " s ends before the checkpoint " << restart_file.string()
+            << " (t = " << restart->world.time << " s): a restart goes on from a checkpoint, it cannot take back "
+            << "frames already written; for a shorter run, run afresh into another folder (-o DIR)";
+        throw scene::SceneError(why.str());
+      }
       const std::filesystem::path folder = restart_file.parent_path();
       if (args.output.empty() && folder.filename() == "checkpoints") opt.output_dir = folder.parent_path();
       const std::string now = scene::resolved_yaml(sc);
       if (restart->scene_resolved != now) scene_changes = changed_lines(restart->scene_resolved, now);
     }
-    if (const std::string why = unwritable_reason(opt.output_dir); !why.empty())
-      throw scene::SceneError("output folder " + opt.output_dir.string() + " cannot be written: " + why +
-                              "; choose another with -o DIR");
+    opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
+    run::OutputFolder::check(opt.output_dir, restart ? run::OutputFolder::Mode::resume : run::OutputFolder::Mode::fresh);
     sim.emplace(sc, std::move(*world), opt, std::move(restart), restart_file);
     if (!scene_changes.empty())
       std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "
@@ -350,6 +345,9 @@ int main(int argc, char** argv) {
       std::cerr << "polyfloe: restarting from " << restart_file.string() << " (t = " << sim->world().time()
                 << " s, step " << sim->world().step_count() << ")\n";
   } catch (const run::CheckpointError& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const run::OutputFolderError& e) {
     std::cerr << "polyfloe: error: " << e.what() << "\n";
     return run::kExitBadInput;
   } catch (const scene::SceneError& e) {  // a setting found unusable once the world exists, before any output

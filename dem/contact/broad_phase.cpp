@@ -53,9 +53,15 @@ void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<cons
   auto cells_for = [&](double c) {
     return padded(std::floor(span.x() / c) + 1.0) * padded(std::floor(span.y() / c) + 1.0);
   };
-  while (cells_for(cell_) > max_cells) cell_ *= 1.5;
-  const int nx = static_cast<int>(std::floor(span.x() / cell_)) + 1;
-  const int ny = static_cast<int>(std::floor(span.y() / cell_)) + 1;
+  // Boxes far from the origin can round to zero extent (a cell of 0 would never grow): start from the span then.
+  if (!(cell_ > 0.0) || !std::isfinite(cell_)) cell_ = std::max({span.x(), span.y(), 1.0});
+  for (int grow = 0; grow < 4096 && cells_for(cell_) > max_cells; ++grow) cell_ *= 1.5;
+  if (!(cells_for(cell_) <= max_cells)) cell_ = std::numeric_limits<double>::infinity();  // one cell holds all
+  auto count = [&](double extent) {  // one cell where the span itself overflowed (boxes near +-1e308)
+    const double c = std::floor(extent / cell_) + 1.0;
+    return c >= 1.0 && c <= max_cells ? static_cast<int>(c) : 1;
+  };
+  const int nx = count(span.x()), ny = count(span.y());
   const int tw = std::min(kTile, nx), th = std::min(kTile, ny);
   const int ntx = (nx + tw - 1) / tw;
   const std::size_t tile_cells = static_cast<std::size_t>(tw) * th;
@@ -65,8 +71,10 @@ void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<cons
            x % tw;
   };
   const double inv = 1.0 / cell_;
-  auto cx = [&](double x) { return std::clamp(static_cast<int>((x - lo.x()) * inv), 0, nx - 1); };
-  auto cy = [&](double y) { return std::clamp(static_cast<int>((y - lo.y()) * inv), 0, ny - 1); };
+  // Clamped in double before the conversion (a NaN or an overflowed offset goes to cell 0, never to int UB).
+  auto cell_of = [](double v, int n) { return v >= 0.0 ? (v < n ? static_cast<int>(v) : n - 1) : 0; };
+  auto cx = [&](double x) { return cell_of((x - lo.x()) * inv, nx); };
+  auto cy = [&](double y) { return cell_of((y - lo.y()) * inv, ny); };
 
   // Counting sort of (body, cell) entries.
   ranges_.resize(4 * static_cast<std::size_t>(n));

@@ -65,10 +65,16 @@ std::string grid_data_error(const GridData& g) {
       return os.str();
     }
     for (std::size_t k = 0; k < total; ++k)
-      if (!std::isfinite((*c)[k])) {
+      if (!(std::abs((*c)[k]) <= kMaxFieldSpeed)) {
         const std::size_t ix = k % g.x.size(), iy = k / g.x.size() % g.y.size(),
                           iz = k / (g.x.size() * g.y.size()) % g.z.size(), it = k / n;
-        os << name << " is not finite at node (t " << it << ", z " << iz << ", y " << iy << ", x " << ix << ")";
+        os << name;
+        if (std::isfinite((*c)[k]))
+          os << " = " << (*c)[k] << " m/s is beyond the " << kMaxFieldSpeed << " m/s any current may have";
+        else
+          os << " is not finite";
+        os << " at node (t " << it << ", z " << iz << ", y " << iy << ", x " << ix << ")";
+        if (std::isfinite((*c)[k])) os << " (are the velocities in other units?)";
         return os.str();
       }
   }

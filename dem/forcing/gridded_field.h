@@ -29,6 +29,10 @@ struct GridData {
   }
 };
 
+// The fastest velocity component a field may hold [m/s]: beyond, the drag terms (quadratic in speed) leave the
+// range the integrator resolves, and the file is surely in other units.
+inline constexpr double kMaxFieldSpeed = 1e3;
+
 // Empty when `g` is a usable grid; otherwise what is wrong ("axis y is not strictly increasing at index 4",
 // "u has 10 values, expected 12 (t x z x y x x)", "u is not finite at node (t 0, z 1, y 3, x 2)").
 std::string grid_data_error(const GridData& g);

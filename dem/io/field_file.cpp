@@ -14,6 +14,8 @@ namespace {
 
 constexpr const char* kFormat = "polyfloe-ocean-field";
 constexpr std::int64_t kFormatVersion = 1;
+// Nodes (t x z x y x x) a field file may have: 2.4 GB of velocities as doubles, read twice over.
+constexpr double kMaxFieldNodes = 1e8;
 
 std::string dims_text(const Dims& d) {
   std::ostringstream os;
@@ -31,6 +33,9 @@ std::vector<double> read_axis(const fs::path& path, const hdf5::Group& root, con
   if (!root.exists(name)) fail(path, std::string("no dataset /") + name + " (the " + unit + " axis)");
   const hdf5::Dataset d = root.open_dataset(name);
   if (d.rank() != 1) fail(path, std::string("/") + name + " must be 1-D, has shape " + dims_text(d.dims()));
+  if (static_cast<double>(d.dims()[0]) > kMaxFieldNodes)
+    fail(path, std::string("/") + name + " declares " + std::to_string(d.dims()[0]) + " values (at most " +
+                   std::to_string(static_cast<long long>(kMaxFieldNodes)) + " nodes are read)");
   return d.read<double>();
 }
 
@@ -104,6 +109,13 @@ FieldFile read_field_file(const fs::path& path) {
         fail(path, std::string("/") + name + " has shape " + dims_text(d) + ", expected " + what + " = " +
                        dims_text(*expect) + " from the axes");
     }
+    // Nodes counted in double before anything is allocated (a file may declare any shape).
+    const double nodes = static_cast<double>(g.t.size()) * g.z.size() * g.y.size() * g.x.size();
+    if (nodes > kMaxFieldNodes)
+      fail(path, "the axes make " + dims_text(expect_u) + " = " + std::to_string(static_cast<long long>(nodes)) +
+                     " nodes, " + std::to_string(static_cast<long long>(nodes * 3 * 8 / (1 << 20))) +
+                     " MiB of velocities (at most " + std::to_string(static_cast<long long>(kMaxFieldNodes)) +
+                     " nodes are read): import the case on a coarser grid or fewer times");
     const std::vector<double> uvw = root.open_dataset("U").read<double>();
     const std::size_t total = uvw.size() / 3;
     g.u.resize(total);

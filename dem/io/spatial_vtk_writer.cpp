@@ -101,20 +101,29 @@ vtkSmartPointer<vtkPolyData> spatial_contacts_polydata(const dynamics::SpatialWo
 
 }  // namespace
 
-SpatialVtkSeriesWriter::SpatialVtkSeriesWriter(const fs::path& dir, bool write_contacts)
-    : dir_(dir), write_contacts_(write_contacts), bodies_pvd_(dir / "bodies.pvd"), contacts_pvd_(dir / "contacts.pvd") {
+SpatialVtkSeriesWriter::SpatialVtkSeriesWriter(const fs::path& dir, bool write_contacts, OutputManifest* manifest)
+    : dir_(dir),
+      write_contacts_(write_contacts),
+      bodies_pvd_(dir / "bodies.pvd", manifest),
+      contacts_pvd_(dir / "contacts.pvd", manifest) {
   std::error_code ec;
+  bodies_pvd_.record("bodies/");
   fs::create_directories(dir / "bodies", ec);
-  if (!ec && write_contacts_) fs::create_directories(dir / "contacts", ec);
+  if (!ec && write_contacts_) {
+    contacts_pvd_.record("contacts/");
+    fs::create_directories(dir / "contacts", ec);
+  }
   if (ec) throw IoError("cannot create VTK output folders in " + dir.string() + ": " + ec.message());
 }
 
 void SpatialVtkSeriesWriter::write_frame(const dynamics::SpatialWorld& world) {
   const std::string bodies_file = "bodies/" + frame_name("bodies", frames_);
+  bodies_pvd_.record(bodies_file);
   write_polydata(spatial_bodies_polydata(world), dir_ / bodies_file);
   std::string contacts_file;
   if (write_contacts_) {
     contacts_file = "contacts/" + frame_name("contacts", frames_);
+    contacts_pvd_.record(contacts_file);
     write_polydata(spatial_contacts_polydata(world), dir_ / contacts_file);
   }
   bodies_pvd_.add(world.time(), bodies_file);

@@ -1,5 +1,7 @@
 #include "io/vtk_writer.h"
 
+#include "io/output_manifest.h"
+
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkLine.h>
@@ -375,9 +377,14 @@ vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world) {
 
 }  // namespace
 
-PvdCollection::PvdCollection(fs::path file) : file_(std::move(file)) {}
+PvdCollection::PvdCollection(fs::path file, OutputManifest* manifest) : file_(std::move(file)), manifest_(manifest) {}
+
+void PvdCollection::record(const std::string& relative) {
+  if (manifest_) manifest_->record(relative);
+}
 
 void PvdCollection::add(double time, const std::string& relative_file) {
+  record(file_.filename().string());
   entries_ += "    <DataSet timestep=\"" + exact(time) + "\" group=\"\" part=\"0\" file=\"" +
               xml_escape(relative_file) + "\"/>\n";
   ++count_;
@@ -392,13 +399,35 @@ void PvdCollection::resume(std::span<const double> times, const std::string& ste
                 xml_escape(stem + "/" + frame_name(stem, static_cast<int>(k), extension)) + "\"/>\n";
     ++count_;
   }
+  record(file_.filename().string());
   write_file_atomic(file_, text());
 }
 
 namespace {
 
-// Removes DIR/<stem>/<stem>_NNNNNN<extension> for every N >= first (and hidden temporaries of such frames).
-void remove_frames_from(const fs::path& dir, const std::string& stem, const char* extension, int first) {
+// The frame number of `name` if it is <stem>_<digits><extension>, else -1.
+long frame_number(const std::string& name, const std::string& stem, const char* extension) {
+  const std::string prefix = stem + "_";
+  if (name.rfind(prefix, 0) != 0) return -1;
+  const std::size_t digits = name.find_first_not_of("0123456789", prefix.size());
+  if (digits == prefix.size() || digits == std::string::npos || digits - prefix.size() > 9) return -1;
+  if (name.compare(digits, std::string::npos, extension) != 0) return -1;
+  return std::stol(name.substr(prefix.size(), digits - prefix.size()));
+}
+
+// Removes DIR/<stem>/<stem>_NNNNNN<extension> for every N >= first: with a manifest, the listed ones only; without,
+// every such file (and hidden temporaries of such frames).
+void remove_frames_from(const fs::path& dir, const std::string& stem, const char* extension, int first,
+                        const OutputManifest* manifest) {
+  if (manifest) {
+    std::vector<std::string> doomed;
+    for (const std::string& e : manifest->entries())
+      if (e.rfind(stem + "/", 0) == 0 && frame_number(e.substr(stem.size() + 1), stem, extension) >= first)
+        doomed.push_back(e);
+    for (const std::string& e : doomed) manifest->remove_file(e);
+    manifest->remove_temporaries(stem + "/");
+    return;
+  }
   std::error_code ec;
   const fs::path sub = dir / stem;
   if (!fs::is_directory(sub, ec)) return;
@@ -431,36 +460,46 @@ std::string PvdCollection::text() const {
 }
 
 
-VtkSeriesWriter::VtkSeriesWriter(const fs::path& dir, bool write_contacts, double water_density)
+VtkSeriesWriter::VtkSeriesWriter(const fs::path& dir, bool write_contacts, double water_density,
+                                 OutputManifest* manifest)
     : dir_(dir),
       write_contacts_(write_contacts),
       water_density_(water_density),
-      floes_pvd_(dir / "floes.pvd"),
-      contacts_pvd_(dir / "contacts.pvd"),
-      bonds_pvd_(dir / "bonds.pvd") {
+      manifest_(manifest),
+      floes_pvd_(dir / "floes.pvd", manifest),
+      contacts_pvd_(dir / "contacts.pvd", manifest),
+      bonds_pvd_(dir / "bonds.pvd", manifest) {
   if (!(water_density > 0.0) || !std::isfinite(water_density)) {
     throw IoError("VTK output " + dir.string() + ": water density must be positive, got " + exact(water_density));
   }
   std::error_code ec;
+  floes_pvd_.record("floes/");
   fs::create_directories(dir / "floes", ec);
-  if (!ec && write_contacts_) fs::create_directories(dir / "contacts", ec);
+  if (!ec && write_contacts_) {
+    contacts_pvd_.record("contacts/");
+    fs::create_directories(dir / "contacts", ec);
+  }
   if (ec) throw IoError("cannot create VTK output folders in " + dir.string() + ": " + ec.message());
 }
 
 void VtkSeriesWriter::write_frame(const dynamics::World& world) {
   const std::string floes_file = "floes/" + frame_name("floes", frames_);
+  floes_pvd_.record(floes_file);
   write_polydata(floes_polydata(world, water_density_), dir_ / floes_file);
   std::string contacts_file;
   if (write_contacts_) {
     contacts_file = "contacts/" + frame_name("contacts", frames_);
+    contacts_pvd_.record(contacts_file);
     write_polydata(contacts_polydata(world), dir_ / contacts_file);
   }
   std::string bonds_file;
   if (world.bonds()) {
     std::error_code ec;
+    bonds_pvd_.record("bonds/");
     fs::create_directories(dir_ / "bonds", ec);
     if (ec) throw IoError("cannot create VTK output folder " + (dir_ / "bonds").string() + ": " + ec.message());
     bonds_file = "bonds/" + frame_name("bonds", frames_);
+    bonds_pvd_.record(bonds_file);
     write_polydata(bonds_polydata(world), dir_ / bonds_file);
   }
   // Collections last: they only ever list frames that are complete on disk.
@@ -478,23 +517,26 @@ void VtkSeriesWriter::resume(std::span<const double> frame_times, bool bonds) {
   floes_pvd_.resume(frame_times, "floes", ".vtp");
   if (write_contacts_) contacts_pvd_.resume(frame_times, "contacts", ".vtp");
   if (bonds) bonds_pvd_.resume(frame_times, "bonds", ".vtp");
-  remove_frames_from(dir_, "floes", ".vtp", frames);
-  remove_frames_from(dir_, "contacts", ".vtp", frames);
-  remove_frames_from(dir_, "bonds", ".vtp", frames);
+  remove_frames_from(dir_, "floes", ".vtp", frames, manifest_);
+  remove_frames_from(dir_, "contacts", ".vtp", frames, manifest_);
+  remove_frames_from(dir_, "bonds", ".vtp", frames, manifest_);
   frames_ = frames;
 }
 
-VtkImageSeriesWriter::VtkImageSeriesWriter(const fs::path& dir, std::string stem, const ImageGrid& grid)
-    : dir_(dir), stem_(std::move(stem)), grid_(grid), pvd_(dir / (stem_ + ".pvd")) {
+VtkImageSeriesWriter::VtkImageSeriesWriter(const fs::path& dir, std::string stem, const ImageGrid& grid,
+                                           OutputManifest* manifest)
+    : dir_(dir), stem_(std::move(stem)), grid_(grid), manifest_(manifest), pvd_(dir / (stem_ + ".pvd"), manifest) {
   if (grid.nx < 1 || grid.ny < 1 || !(grid.cell > 0.0) || !std::isfinite(grid.cell))
     throw IoError("VTK image output " + (dir / stem_).string() + ": the grid needs positive cell size and counts");
   std::error_code ec;
+  pvd_.record(stem_ + "/");
   fs::create_directories(dir / stem_, ec);
   if (ec) throw IoError("cannot create VTK output folder " + (dir / stem_).string() + ": " + ec.message());
 }
 
 void VtkImageSeriesWriter::write_frame(double time, std::uint64_t step, std::span<const CellField> fields) {
   const std::string file = stem_ + "/" + frame_name(stem_, frames_, ".vti");
+  pvd_.record(file);
   const auto cells = static_cast<vtkIdType>(grid_.nx) * grid_.ny;
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(grid_.nx + 1, grid_.ny + 1, 1);  // points at the cell corners
@@ -524,7 +566,7 @@ void VtkImageSeriesWriter::write_frame(double time, std::uint64_t step, std::spa
 void VtkImageSeriesWriter::resume(std::span<const double> frame_times) {
   const int frames = static_cast<int>(frame_times.size());
   pvd_.resume(frame_times, stem_, ".vti");  // as above: the collection before the frames it drops
-  remove_frames_from(dir_, stem_, ".vti", frames);
+  remove_frames_from(dir_, stem_, ".vti", frames, manifest_);
   frames_ = frames;
 }
 

@@ -22,10 +22,16 @@ class SpatialWorld;
 
 namespace polyfloe::io {
 
-// A .pvd collection file: (time, relative file) entries, rewritten atomically on every add().
+class OutputManifest;
+
+// A .pvd collection file: (time, relative file) entries, rewritten atomically on every add(). With a manifest
+// (io/output_manifest.h: the list of what a run wrote into its folder), the collection and the frame files named
+// to record() are listed in it before they are written.
 class PvdCollection {
  public:
-  explicit PvdCollection(std::filesystem::path file);
+  explicit PvdCollection(std::filesystem::path file, OutputManifest* manifest = nullptr);
+  // Lists `relative` (a frame file or folder, relative to the .pvd's folder) in the manifest, if there is one.
+  void record(const std::string& relative);
   // Appends a DataSet entry; `relative_file` is relative to the .pvd's folder. Rewrites the file.
   void add(double time, const std::string& relative_file);
   const std::filesystem::path& path() const { return file_; }
@@ -38,6 +44,7 @@ class PvdCollection {
 
  private:
   std::filesystem::path file_;
+  OutputManifest* manifest_;
   std::string entries_;  // the <DataSet .../> lines so far
   std::size_t count_ = 0;
 };
@@ -46,7 +53,10 @@ class VtkSeriesWriter {
  public:
   // Creates DIR (and DIR/floes, DIR/contacts) if needed; existing .pvd files there are replaced on the first
   // frame. `water_density` [kg/m^3] sets each floe's draft, so prisms float at their equilibrium level.
-  VtkSeriesWriter(const std::filesystem::path& dir, bool write_contacts, double water_density);
+  // `manifest` (optional): where every file is listed before it is made; a resumed run then removes only listed
+  // frames.
+  VtkSeriesWriter(const std::filesystem::path& dir, bool write_contacts, double water_density,
+                  OutputManifest* manifest = nullptr);
 
   // Writes frame number frames() at time world.time() [s]. Throws IoError naming the file on failure.
   void write_frame(const dynamics::World& world);
@@ -62,6 +72,7 @@ class VtkSeriesWriter {
   std::filesystem::path dir_;
   bool write_contacts_;
   double water_density_;  // [kg/m^3]
+  OutputManifest* manifest_;
   int frames_ = 0;
   PvdCollection floes_pvd_;
   PvdCollection contacts_pvd_;
@@ -75,7 +86,7 @@ class VtkSeriesWriter {
 //                                                      depth [m], manifold_points
 class SpatialVtkSeriesWriter {
  public:
-  SpatialVtkSeriesWriter(const std::filesystem::path& dir, bool write_contacts);
+  SpatialVtkSeriesWriter(const std::filesystem::path& dir, bool write_contacts, OutputManifest* manifest = nullptr);
   void write_frame(const dynamics::SpatialWorld& world);
   int frames() const { return frames_; }
 
@@ -107,7 +118,8 @@ struct CellField {
 // frames (temporary file + rename, collection rewritten after each complete frame).
 class VtkImageSeriesWriter {
  public:
-  VtkImageSeriesWriter(const std::filesystem::path& dir, std::string stem, const ImageGrid& grid);
+  VtkImageSeriesWriter(const std::filesystem::path& dir, std::string stem, const ImageGrid& grid,
+                       OutputManifest* manifest = nullptr);
   // Writes frame number frames() at `time` [s] (step `step`). Throws IoError naming the file on failure, or if a
   // field's size does not match the grid.
   void write_frame(double time, std::uint64_t step, std::span<const CellField> fields);
@@ -119,6 +131,7 @@ class VtkImageSeriesWriter {
   std::filesystem::path dir_;
   std::string stem_;
   ImageGrid grid_;
+  OutputManifest* manifest_;
   int frames_ = 0;
   PvdCollection pvd_;
 };

@@ -6,9 +6,11 @@
 #include <cstring>
 #include <limits>
 #include <system_error>
+#include <type_traits>
 
 #include "io/atomic_file.h"
 #include "io/hdf5_file.h"
+#include "scene/scene.h"
 
 namespace polyfloe::run {
 
@@ -76,8 +78,9 @@ std::vector<T> get(const Group& g, const char* name, std::size_t rows, std::size
   if (dims.size() != expected_rank || dims[0] != rows || (width > 1 && dims[1] != width)) {
     std::string shape;
     for (auto x : dims) shape += (shape.empty() ? "" : " x ") + std::to_string(x);
-    throw CheckpointError(d.where() + ": has shape [" + shape + "], expected [" + std::to_string(rows) +
-                          (width > 1 ? " x " + std::to_string(width) : std::string()) + "]");
+    throw CheckpointError("checkpoint " + d.where() + ": has shape [" + shape + "], expected [" +
+                          std::to_string(rows) + (width > 1 ? " x " + std::to_string(width) : std::string()) +
+                          "] (the arrays of one checkpoint must agree)");
   }
   return d.read<T>();
 }
@@ -225,11 +228,22 @@ Checkpoint read_checkpoint(const fs::path& file) {
     c.dt = root.double_attribute("dt");
     c.frames = static_cast<int>(root.int_attribute("frames"));
     c.next_frame = root.double_attribute("next_frame");
-    if (c.frames < 0) throw CheckpointError("checkpoint " + file.string() + ": negative frame count");
+    // Counts are checked before anything is sized by them: a checkpoint is input like any other.
+    const std::int64_t frames = root.int_attribute("frames");
+    if (frames < 0 || static_cast<double>(frames) > scene::OutputSettings::kMaxFrames)
+      throw CheckpointError("checkpoint " + file.string() + ": frame count " + std::to_string(frames) +
+                            " is outside [0, " + std::to_string(static_cast<long long>(scene::OutputSettings::kMaxFrames)) + "]");
+    c.frames = static_cast<int>(frames);
     c.frame_times = get<double>(root, "frame_times", static_cast<std::size_t>(c.frames));
     dynamics::WorldState& w = c.world;
     w.time = root.double_attribute("time");
-    w.steps = static_cast<std::uint64_t>(root.int_attribute("steps"));
+    const std::int64_t steps = root.int_attribute("steps");
+    if (steps < 0 || static_cast<double>(steps) > scene::kMaxSteps)
+      throw CheckpointError("checkpoint " + file.string() + ": step count " + std::to_string(steps) +
+                            " is outside [0, 1e12]");
+    w.steps = static_cast<std::uint64_t>(steps);
+    if (!(w.time >= 0.0) || !std::isfinite(w.time))
+      throw CheckpointError("checkpoint " + file.string() + ": time " + std::to_string(w.time) + " s is not a time");
     w.forces_ready = root.int_attribute("forces_ready") != 0;
     w.bonds_failed_last = static_cast<int>(root.int_attribute("bonds_failed_last"));
 
@@ -339,6 +353,27 @@ void check_restart(const Checkpoint& c, const fs::path& file, const dynamics::Wo
     throw CheckpointError(where + "has no output frame to continue from");
   if (!(c.dt > 0.0) || !std::isfinite(c.dt)) throw CheckpointError(where + "has an invalid time step");
   if (!std::isfinite(c.next_frame)) throw CheckpointError(where + "has an invalid next frame time");
+  for (std::size_t k = 0; k < c.frame_times.size(); ++k)
+    if (!std::isfinite(c.frame_times[k]) || (k > 0 && !(c.frame_times[k] > c.frame_times[k - 1])) ||
+        c.frame_times[k] > c.world.time)
+      throw CheckpointError(where + "its frame times are not increasing times up to the checkpoint's " +
+                            std::to_string(c.world.time) + " s (frame " + std::to_string(k) + ")");
+  const dynamics::WorldState& w = c.world;
+  auto finite = [](const auto& v) {
+    return std::all_of(v.begin(), v.end(), [](const auto& x) {
+      if constexpr (std::is_arithmetic_v<std::decay_t<decltype(x)>>) return std::isfinite(x);
+      else return x.allFinite();
+    });
+  };
+  if (!finite(w.position) || !finite(w.yaw) || !finite(w.velocity) || !finite(w.omega) || !finite(w.force) ||
+      !finite(w.torque))
+    throw CheckpointError(where + "holds a body state that is not finite (NaN or infinite position, velocity or "
+                          "force); restart from an earlier checkpoint");
+  // Beyond 10^10 m the floes' own extent rounds away against their position: no run gets there.
+  for (const Vec2& p : w.position)
+    if (!(p.cwiseAbs().maxCoeff() <= 1e10))
+      throw CheckpointError(where + "holds a body at " + std::to_string(p.x()) + ", " + std::to_string(p.y()) +
+                            " m, beyond the 1e10 m any run reaches");
 }
 
 }  // namespace polyfloe::run

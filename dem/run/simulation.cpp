@@ -1,6 +1,7 @@
 #include "run/simulation.h"
 
 #include "run/channel_monitor.h"
+#include "run/output_folder.h"
 #include "run/velocity_grid.h"
 
 #include <algorithm>
@@ -28,40 +29,6 @@ std::string join(const std::vector<std::string>& v, const char* sep) {
   return out;
 }
 
-// Removes the outputs of an earlier run in the same folder, and nothing else: frame files named as this program
-// names them (floes/floes_NNNNNN.vtp, contacts/contacts_NNNNNN.vtp, bonds/bonds_NNNNNN.vtp,
-// velocity/velocity_NNNNNN.vti, and hidden
-// temporaries), the series and the HDF5 file. A frame folder is removed only if that leaves it empty.
-void clear_previous_outputs(const std::filesystem::path& dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  for (const auto& [name, extension] : {std::pair<std::string, std::string>{"floes", ".vtp"},
-                                        {"contacts", ".vtp"}, {"bonds", ".vtp"}, {"velocity", ".vti"}}) {
-    const fs::path sub = dir / name;
-    if (!fs::is_directory(sub, ec)) continue;
-    for (const auto& entry : fs::directory_iterator(sub, ec)) {
-      const std::string f = entry.path().filename().string();
-      const bool frame = f.rfind(name + "_", 0) == 0 && entry.path().extension() == extension;
-      const bool temporary = f.rfind("." + name + "_", 0) == 0;
-      if (entry.is_regular_file(ec) && (frame || temporary)) fs::remove(entry.path(), ec);
-    }
-    fs::remove(sub, ec);  // only succeeds when empty
-  }
-  for (const char* name : {"floes.pvd", "contacts.pvd", "bonds.pvd", "velocity.pvd", "results.h5",
-                           "scene.resolved.yaml", kInterruptedResults})
-    fs::remove(dir / name, ec);
-  // A previous run's checkpoints (a restart must not find them) and its copy of results.h5.
-  const fs::path checkpoints = dir / "checkpoints";
-  for (const auto& entry : fs::directory_iterator(checkpoints, ec)) {
-    const std::string f = entry.path().filename().string();
-    const bool ours = entry.path().extension() == ".h5" &&
-                      (f.rfind("checkpoint_", 0) == 0 || f == "unstable.h5" || f == "results.h5");
-    const bool temporary = f.rfind(".checkpoint_", 0) == 0 || f.rfind(".results.h5", 0) == 0;
-    if (entry.is_regular_file(ec) && (ours || temporary)) fs::remove(entry.path(), ec);
-  }
-  fs::remove(checkpoints, ec);  // only succeeds when empty
-}
-
 // The velocity grid the scene asks for (its region, or every body at t = 0), checked against the size limit.
 GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const dynamics::World& world) {
   GridGeometry geo;
@@ -74,16 +41,7 @@ GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const 
     geo.ny = static_cast<int>(std::max(1.0, std::ceil((r[3] - r[1]) / g.cell)));
     return geo;
   }
-  const double cells = [&] {  // before building it: the automatic region may be huge
-    GridGeometry unit = VelocityGrid::covering(world, g.cell);
-    return static_cast<double>(unit.nx) * unit.ny;
-  }();
-  if (cells > scene::VelocityGridSettings::kMaxCells) {
-    throw scene::SceneError("output.velocity_grid: the bodies span " + std::to_string(static_cast<long long>(cells)) +
-                            " cells of " + std::to_string(g.cell) + " m (at most " +
-                            std::to_string(static_cast<long long>(scene::VelocityGridSettings::kMaxCells)) +
-                            "): raise output.velocity_grid.cell or give output.velocity_grid.region");
-  }
+  // The automatic region: every body at t = 0 (covering() refuses a grid past the size limit).
   return VelocityGrid::covering(world, g.cell);
 }
 
@@ -196,17 +154,16 @@ std::string output_block(const std::string& resolved) {
   return out;
 }
 
-void prune_checkpoints(const std::filesystem::path& output_dir, int keep) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(output_dir / "checkpoints", ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.size() == 20 && name.rfind("checkpoint_", 0) == 0 && entry.path().extension() == ".h5")
-      files.push_back(entry.path());
-  }
+// Keeps the newest `keep` of the numbered checkpoints this run's folder lists (io::OutputManifest), removing the
+// older ones; a file it does not list is never touched.
+void prune_checkpoints(const io::OutputManifest& manifest, int keep) {
+  std::vector<std::string> files;
+  for (const std::string& e : manifest.entries())
+    if (e.size() == 32 && e.rfind("checkpoints/checkpoint_", 0) == 0 && e.compare(e.size() - 3, 3, ".h5") == 0 &&
+        std::filesystem::exists(manifest.directory() / e))
+      files.push_back(e);
   std::sort(files.begin(), files.end());
-  for (std::size_t k = 0; k + static_cast<std::size_t>(keep) < files.size(); ++k) fs::remove(files[k], ec);
+  for (std::size_t k = 0; k + static_cast<std::size_t>(keep) < files.size(); ++k) manifest.remove_file(files[k]);
 }
 
 // Reads what a restart copies from an interrupted run's results: the first `frames` rows of every series and every
@@ -313,16 +270,21 @@ RunSummary Simulation::run() {
   const double interval = scene_.output.interval;
   const scene::VelocityGridSettings& grid_settings = scene_.output.velocity_grid;
   const scene::CheckpointSettings& checkpoints = scene_.output.checkpoint;
-  const fs::path& out = options_.output_dir;
-
-  fs::create_directories(out);
-  if (!restart_) clear_previous_outputs(out);
+  // The folder contract (run/output_folder.h): locked for the run, every file listed before it is written.
+  OutputFolder folder(options_.output_dir, restart_ ? OutputFolder::Mode::resume : OutputFolder::Mode::fresh);
+  const fs::path& out = folder.path();
+  io::OutputManifest& manifest = folder.manifest();
+  if (restart_) {  // what the interrupted writers left half-made (the frame folders: VtkSeriesWriter::resume)
+    manifest.remove_temporaries("");
+    manifest.remove_temporaries("checkpoints/");
+  }
+  manifest.record("scene.resolved.yaml");
   io::write_file_atomic(out / "scene.resolved.yaml", scene::resolved_yaml(scene_));
 
   const double rho_w = scene_.world.drift.water_density;
   std::unique_ptr<io::VtkSeriesWriter> vtk;
   std::unique_ptr<io::Hdf5Writer> h5;
-  if (scene_.output.vtk) vtk = std::make_unique<io::VtkSeriesWriter>(out, scene_.output.contacts, rho_w);
+  if (scene_.output.vtk) vtk = std::make_unique<io::VtkSeriesWriter>(out, scene_.output.contacts, rho_w, &manifest);
   std::optional<ChannelMonitor> channel;
   std::vector<io::ExtraSeries> extra;
   if (scene_.channel) {
@@ -341,17 +303,19 @@ RunSummary Simulation::run() {
     adopt_from = restart_results_;
     if (adopt_from == out / "results.h5") {  // moved aside while its frames are copied into a new results.h5
       adopt_from = out / kInterruptedResults;
+      manifest.record(kInterruptedResults);
       fs::rename(out / "results.h5", adopt_from);
     }
   }
   if (scene_.output.hdf5) {
     io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
+    manifest.record("results.h5");
     h5 = std::make_unique<io::Hdf5Writer>(out / "results.h5", world_, info, rho_w, extra);
   }
   std::optional<VelocityGridRecorder> velocity_grid;
   if (grid_geometry_) {
     velocity_grid.emplace(*grid_geometry_, interval / grid_settings.samples_per_frame,
-                          scene_.output.vtk ? out : fs::path(), h5.get());
+                          scene_.output.vtk ? out : fs::path(), h5.get(), &manifest);
   }
   int frames = 0;
   std::vector<double> frame_times;
@@ -375,6 +339,8 @@ RunSummary Simulation::run() {
     if (h5) {  // the copy of results.h5 first: it then holds at least the frames of every checkpoint on disk
       h5->flush();
       const fs::path snapshot = out / kResultsSnapshot;
+      manifest.record("checkpoints/");
+      manifest.record(kResultsSnapshot);
       fs::create_directories(snapshot.parent_path());
       const fs::path tmp = io::temporary_sibling(snapshot);
       fs::copy_file(out / "results.h5", tmp, fs::copy_options::overwrite_existing);
@@ -392,6 +358,8 @@ RunSummary Simulation::run() {
     c.world = world_.state();
     if (channel) c.channel = channel->state();
     if (velocity_grid) c.next_sample = velocity_grid->next_sample();
+    manifest.record("checkpoints/");
+    manifest.record(file.lexically_relative(out).string());
     write_checkpoint(file, c);
   };
 
@@ -432,7 +400,7 @@ RunSummary Simulation::run() {
         write_frame();
         if (checkpoints.every > 0 && (last || frames % checkpoints.every == 0)) {
           checkpoint(last ? "final" : "frame", checkpoint_path(out, frames));
-          prune_checkpoints(out, checkpoints.keep);
+          prune_checkpoints(manifest, checkpoints.keep);
         }
       }
       progress.update(world_.time(), world_.step_count());
@@ -470,7 +438,7 @@ RunSummary Simulation::run() {
     s.channel_area_passed = channel->area_passed();
     s.channel_jam_time = channel->jam_time();
   }
-  s.output_dir = options_.output_dir;
+  s.output_dir = out;
   if (options_.profile) {
     const dynamics::StepProfile& p = world_.profile();
     const double total = p.integrate + p.shapes + p.broad + p.narrow_and_law + p.forcing + p.bonds;

@@ -11,6 +11,7 @@
 #include "io/atomic_file.h"
 #include "io/spatial_hdf5_writer.h"
 #include "io/vtk_writer.h"
+#include "run/output_folder.h"
 
 namespace polyfloe::run {
 
@@ -48,11 +49,13 @@ RunSummary run_spatial(const scene::Scene& scene, dynamics::SpatialWorld& world,
   namespace fs = std::filesystem;
   RunSummary summary;
   summary.dt = scene::time_step(scene, world);
-  summary.output_dir = options.output_dir;
-  fs::create_directories(options.output_dir);
-  io::write_file_atomic(options.output_dir / "scene.resolved.yaml", scene::resolved_yaml(scene));
+  OutputFolder folder(options.output_dir, OutputFolder::Mode::fresh);  // the contract of run/output_folder.h
+  const fs::path& out = folder.path();
+  summary.output_dir = out;
+  folder.manifest().record("scene.resolved.yaml");
+  io::write_file_atomic(out / "scene.resolved.yaml", scene::resolved_yaml(scene));
   std::optional<io::SpatialVtkSeriesWriter> vtk;
-  if (scene.output.vtk) vtk.emplace(options.output_dir, scene.output.contacts);
+  if (scene.output.vtk) vtk.emplace(out, scene.output.contacts, &folder.manifest());
   std::optional<io::SpatialHdf5Writer> h5;
   if (scene.output.hdf5) {
     io::RunInfo info;
@@ -61,7 +64,8 @@ RunSummary run_spatial(const scene::Scene& scene, dynamics::SpatialWorld& world,
     info.version = options.version;
     for (const auto& o : scene.overrides) info.overrides += (info.overrides.empty() ? "" : "\n") + o;
     info.dt = summary.dt;
-    h5.emplace(options.output_dir / "results.h5", world, info);
+    folder.manifest().record("results.h5");
+    h5.emplace(out / "results.h5", world, info);
   }
   auto frame = [&] {
     if (vtk) vtk->write_frame(world);

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scene/scene.h"
+
 namespace polyfloe::run {
 
 using geometry::Vec2;
@@ -38,8 +40,15 @@ GridGeometry VelocityGrid::covering(const dynamics::World& world, double cell) {
   }
   g.x0 = std::floor(lo_x / cell) * cell;
   g.y0 = std::floor(lo_y / cell) * cell;
-  g.nx = std::max(1, static_cast<int>(std::ceil((hi_x - g.x0) / cell)));
-  g.ny = std::max(1, static_cast<int>(std::ceil((hi_y - g.y0) / cell)));
+  // Counted in double and checked before any conversion to int (a tiny cell would overflow it).
+  const double nx = std::max(1.0, std::ceil((hi_x - g.x0) / cell)), ny = std::max(1.0, std::ceil((hi_y - g.y0) / cell));
+  if (!(nx * ny <= scene::VelocityGridSettings::kMaxCells))
+    throw scene::SceneError("output.velocity_grid.cell: the bodies span " + std::to_string(nx) + " x " +
+                            std::to_string(ny) + " cells of " + std::to_string(cell) + " m (at most " +
+                            std::to_string(static_cast<long long>(scene::VelocityGridSettings::kMaxCells)) +
+                            " cells): raise output.velocity_grid.cell or give output.velocity_grid.region");
+  g.nx = static_cast<int>(nx);
+  g.ny = static_cast<int>(ny);
   return g;
 }
 
@@ -119,11 +128,12 @@ VelocityGrid::Frame VelocityGrid::take() {
 }
 
 VelocityGridRecorder::VelocityGridRecorder(const GridGeometry& grid, double sample_interval,
-                                           const std::filesystem::path& vtk_dir, io::Hdf5Writer* h5)
+                                           const std::filesystem::path& vtk_dir, io::Hdf5Writer* h5,
+                                           io::OutputManifest* manifest)
     : grid_(grid), interval_(sample_interval), next_sample_(sample_interval) {
   if (!(sample_interval > 0.0) || !std::isfinite(sample_interval))
     throw std::invalid_argument("velocity grid: the sample interval must be positive");
-  if (!vtk_dir.empty()) vtk_ = std::make_unique<io::VtkImageSeriesWriter>(vtk_dir, "velocity", grid);
+  if (!vtk_dir.empty()) vtk_ = std::make_unique<io::VtkImageSeriesWriter>(vtk_dir, "velocity", grid, manifest);
   if (h5) {
     using io::hdf5::DType;
     io::hdf5::Group g = h5->diagnostics().create_group("velocity_grid");

@@ -62,7 +62,7 @@ class VelocityGridRecorder {
  public:
   // `vtk_dir` empty: no VTK series; `h5` null: no HDF5 series.
   VelocityGridRecorder(const GridGeometry& grid, double sample_interval, const std::filesystem::path& vtk_dir,
-                       io::Hdf5Writer* h5);
+                       io::Hdf5Writer* h5, io::OutputManifest* manifest = nullptr);
   // Call after every step: samples when the time has reached the next sample time.
   void after_step(const dynamics::World& world);
   // Call at every output frame, before the HDF5 writer's write_frame (which flushes): writes the average since the

@@ -89,12 +89,7 @@ double time_step(const Scene& scene, const dynamics::SpatialWorld& world) {
                        std::to_string(duration) + " s); set run.dt");
     dt = duration / scene.time.steps_per_contact;
   }
-  if (const double steps = std::ceil(scene.time.duration / dt); !(steps <= kMaxSteps)) {
-    std::ostringstream msg;
-    msg << scene.source_path << ": run.duration " << scene.time.duration << " s at the time step " << dt
-        << " s is " << steps << " steps, more than the " << kMaxSteps << " a run may take; shorten run.duration";
-    throw SceneError(msg.str());
-  }
+  check_run_length(scene, dt);
   return dt;
 }
 

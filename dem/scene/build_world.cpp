@@ -6,10 +6,12 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
 
+#include "contact/broad_phase.h"
 #include "forcing/drift.h"
 #include "geometry/space_order.h"
 #include "scene/body_ids.h"
@@ -53,6 +55,30 @@ bool overlapping(const PlacedBody& a, const PlacedBody& b) {
   if (!a.box.overlaps(b.box)) return false;
   const double scale = std::max((a.box.hi - a.box.lo).maxCoeff(), (b.box.hi - b.box.lo).maxCoeff());
   return polygon_separation(a.vertices, b.vertices) < -1e-9 * scale;
+}
+
+// The overlapping pair (a < b) among bodies[0, end) that `counts(a, b)` accepts with the smallest (b, a): the pair a
+// check in list order would report first. Candidates come from the broad phase's grid, so the check stays
+// O(N log N) for any number of bodies; pairs of two fixed bodies are not candidates.
+template <class Counts>
+std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const std::vector<PlacedBody>& bodies,
+                                                                  std::size_t end, Counts counts) {
+  std::vector<geometry::Aabb> boxes(end);
+  std::vector<std::uint8_t> dynamic(end);
+  for (std::size_t i = 0; i < end; ++i) {
+    boxes[i] = bodies[i].box;
+    dynamic[i] = bodies[i].dynamic ? 1 : 0;
+  }
+  std::vector<contact::CandidatePair> pairs;
+  contact::GridBroadPhase grid;
+  grid.find_pairs(boxes, dynamic, pairs);
+  std::optional<std::pair<std::size_t, std::size_t>> first;
+  for (const contact::CandidatePair& c : pairs) {
+    const auto a = static_cast<std::size_t>(std::min(c.a, c.b)), b = static_cast<std::size_t>(std::max(c.a, c.b));
+    if (first && std::make_pair(b, a) >= std::make_pair(first->second, first->first)) continue;
+    if (counts(a, b) && overlapping(bodies[a], bodies[b])) first = std::make_pair(a, b);
+  }
+  return first;
 }
 
 std::string body_source(const BodySpec& b, std::size_t i) {
@@ -115,6 +141,27 @@ double bond_time_step(const dynamics::World& world) {
   return kBondStepFraction * b->critical_time_step(mass, inertia);
 }
 
+void check_run_length(const Scene& scene, double dt) {
+  // The step counter is an integer; beyond this a run could not finish anyway (a microsecond per step is 11 days).
+  const double steps = std::ceil(scene.time.duration / dt);
+  if (!(steps <= kMaxSteps)) {
+    std::ostringstream msg;
+    msg << scene.source_path << ": run.duration " << scene.time.duration << " s at the time step " << dt << " s"
+        << (scene.time.dt ? " (run.dt)" : " (automatic)") << " is " << steps << " steps, more than the " << kMaxSteps
+        << " a run may take; shorten run.duration" << (scene.time.dt ? " or raise run.dt" : "");
+    throw SceneError(msg.str());
+  }
+  // A frame at most every step: the frames are those of the interval or of the steps, whichever are fewer.
+  const double frames = std::min(std::floor(scene.time.duration / scene.output.interval), steps) + 1.0;
+  if ((scene.output.vtk || scene.output.hdf5) && !(frames <= OutputSettings::kMaxFrames)) {
+    std::ostringstream msg;
+    msg << scene.source_path << ": output.interval " << scene.output.interval << " s over run.duration "
+        << scene.time.duration << " s is " << frames << " frames, each a file per series (at most "
+        << OutputSettings::kMaxFrames << "); raise output.interval";
+    throw SceneError(msg.str());
+  }
+}
+
 double time_step(const Scene& scene, const dynamics::World& world) {
   double dt = 0.0;
   if (scene.time.dt) {
@@ -126,14 +173,7 @@ double time_step(const Scene& scene, const dynamics::World& world) {
                        std::to_string(duration) + " s); set run.dt");
     dt = std::min(duration / scene.time.steps_per_contact, bond_time_step(world));
   }
-  // The step counter is an integer; beyond this a run could not finish anyway (a microsecond per step is 11 days).
-  if (const double steps = std::ceil(scene.time.duration / dt); !(steps <= kMaxSteps)) {
-    std::ostringstream msg;
-    msg << scene.source_path << ": run.duration " << scene.time.duration << " s at the time step " << dt << " s"
-        << (scene.time.dt ? " (run.dt)" : " (automatic)") << " is " << steps << " steps, more than the " << kMaxSteps
-        << " a run may take; shorten run.duration" << (scene.time.dt ? " or raise run.dt" : "");
-    throw SceneError(msg.str());
-  }
+  check_run_length(scene, dt);
   return dt;
 }
 
@@ -190,12 +230,7 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     }
     const bool dynamic = b.motion == Motion::dynamic;
     if (dynamic) max_thickness = std::max(max_thickness, b.thickness);
-    PlacedBody p = placed(source, *shape, b.position, b.yaw, dynamic);
-    for (const PlacedBody& q : bodies) {
-      if ((p.dynamic || q.dynamic) && overlapping(p, q))
-        throw SceneError(source + ": overlaps " + q.source + " initially; move them apart");
-    }
-    bodies.push_back(std::move(p));
+    bodies.push_back(placed(source, *shape, b.position, b.yaw, dynamic));
 
     BodyDesc desc;
     desc.id = ids[i];
@@ -211,6 +246,9 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     desc.external_torque = b.external_torque;
     add(world, desc, source);
   }
+  if (const auto pair = first_overlap(bodies, bodies.size(), [](std::size_t, std::size_t) { return true; }))
+    throw SceneError(bodies[pair->second].source + ": overlaps " + bodies[pair->first].source +
+                     " initially; move them apart");
   if (scene.floe_field) max_thickness = std::max(max_thickness, scene.floe_field->thickness);
   if (scene.ice_sheet) max_thickness = std::max(max_thickness, scene.ice_sheet->thickness);
   if (!(max_thickness > 0.0)) max_thickness = 1.0;
@@ -248,16 +286,17 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     std::vector<int> index(descs.size());
     for (std::size_t e = 0; e < descs.size(); ++e) {
       const BodyDesc& desc = descs[e];
-      PlacedBody p = placed(where + " (ice_sheet element " + std::to_string(e) + ")", *desc.shape, desc.position,
-                            0.0, true);
-      for (std::size_t k = 0; k < placed_before; ++k) {
-        if (overlapping(p, bodies[k]))
-          throw SceneError(p.source + ": overlaps " + bodies[k].source + " initially; move the body or the sheet");
-      }
-      bodies.push_back(std::move(p));
+      bodies.push_back(placed(where + " (ice_sheet element " + std::to_string(e) + ")", *desc.shape, desc.position,
+                              0.0, true));
       add(world, desc, where);
       index[e] = world.index_of(desc.id);
     }
+    const auto pair = first_overlap(bodies, bodies.size(), [&](std::size_t a, std::size_t b) {
+      return a < placed_before && b >= placed_before;  // the sheet's cells against what was placed before it
+    });
+    if (pair)
+      throw SceneError(bodies[pair->second].source + ": overlaps " + bodies[pair->first].source +
+                       " initially; move the body or the sheet");
     next += static_cast<BodyId>(descs.size());
     if (const auto& b = sheet->bonds) {
       bonds::BondMaterial m;

@@ -22,8 +22,12 @@ std::optional<SpecIssue> channel_issue(const ChannelSpec& s) {
   } finite[] = {{"basin_x_min", s.basin_x_min}, {"basin_x_max", s.basin_x_max},   {"basin_y_min", s.basin_y_min},
                 {"basin_y_max", s.basin_y_max}, {"funnel_length", s.funnel_length}, {"opening", s.opening},
                 {"strait_length", s.strait_length}, {"wall_thickness", s.wall_thickness}};
+  // A channel of at most 10,000 km: beyond, the wall polygons leave the range where areas and moments are normal
+  // doubles.
+  constexpr double kMaxLength = 1e7;  // [m]
   for (const auto& f : finite)
-    if (!std::isfinite(f.value)) return SpecIssue{f.key, "must be a finite number [m]"};
+    if (!(std::abs(f.value) <= kMaxLength))
+      return SpecIssue{f.key, number(f.value) + " is outside the allowed range [-1e+07, 1e+07] [m]"};
   if (!(s.basin_x_max > s.basin_x_min))
     return SpecIssue{"basin_x_max", number(s.basin_x_max) + " must be > basin_x_min = " + number(s.basin_x_min) +
                                         " [m]"};

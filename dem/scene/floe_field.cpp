@@ -359,6 +359,8 @@ FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamic
     FieldRandom pool_rng(mix_seed(spec.seed, 2));
     voronoi.emplace(spec, pool_rng);
   }
+  const double attempt_budget =
+      FloeFieldSpec::kBaseAttempts + FloeFieldSpec::kAttemptsPerFloe * static_cast<double>(sizes.size());
   for (std::size_t f = 0; f < sizes.size(); ++f) {
     const double size = sizes[f];
     std::vector<Vec2> raw;
@@ -382,7 +384,15 @@ FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamic
     }
     bool done = false;
     for (int attempt = 0; attempt < spec.max_attempts && !done; ++attempt) {
-      ++field.attempts;
+      if (static_cast<double>(++field.attempts) > attempt_budget) {
+        std::ostringstream msg;
+        msg.precision(4);
+        msg << prefix(spec) << "floe_field: placing " << f << " of " << sizes.size() << " floes took more than "
+            << attempt_budget << " random tries in all (the concentration reached is "
+            << field.ice_area / field.region_area << " of the target " << spec.concentration
+            << "); lower floe_field.concentration or floe_field.max_attempts";
+        throw SceneError(msg.str());
+      }
       const Vec2 p(place_rng.uniform(p_lo.x(), p_hi.x()), place_rng.uniform(p_lo.y(), p_hi.y()));
       const geometry::Aabb box{body.box.lo + p - Vec2(gap, gap), body.box.hi + p + Vec2(gap, gap)};
       int x0, y0, x1, y1;
@@ -437,6 +447,17 @@ FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamic
     }
   }
   field.concentration = field.ice_area / field.region_area;
+  // The sizes are drawn to make up the target area; a field far from it would be a wrong result, not a field.
+  // (The last floe may be left out when what it would add is smaller than one floe of size.min.)
+  const double slack = 0.01 * spec.concentration + circle_area(spec.size_min) / field.region_area;
+  if (!(std::abs(field.concentration - spec.concentration) <= slack)) {
+    std::ostringstream msg;
+    msg.precision(4);
+    msg << prefix(spec) << "floe_field: the generated field has concentration " << field.concentration
+        << ", not the target " << spec.concentration << " (" << field.floes.size()
+        << " floes); check floe_field.size and floe_field.region";
+    throw SceneError(msg.str());
+  }
   return field;
 }
 

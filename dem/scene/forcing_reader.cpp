@@ -44,8 +44,11 @@ void read_file_field(MapReader& m, forcing::FieldSpec& s) {
   if (given.empty()) ctx.fail(*fp, "expected a file name, got an empty text");
   fs::path path(given);
   if (path.is_relative()) path = fs::path(ctx.file()).parent_path() / path;
-  path = path.lexically_normal();
-  if (path.is_relative()) path = fs::absolute(path);
+  // One spelling per file (links and '..' resolved), so that a restart compares the same resolved scene.
+  std::error_code ec;
+  const fs::path spelled = fs::absolute(path, ec).lexically_normal();
+  const fs::path canonical = fs::weakly_canonical(spelled, ec);
+  path = ec ? spelled : canonical;
   s.path = path.string();
   try {
     s.grid = std::make_shared<forcing::GridData>(io::read_field_file(path).grid);
@@ -107,7 +110,7 @@ forcing::FieldSpec read_field(MapReader m) {
       m.vec2("amplitude", s.amplitude, "m/s");
       const auto fp = m.take("period");
       if (!fp) ctx.fail(m.self(), "missing required key 'period' [s]");
-      s.period = to_number(ctx, *fp, positive("s"));
+      s.period = to_number(ctx, *fp, closed(1.0, 1e12, "s"));  // a second to 30,000 years
       m.number("phase", s.phase, any("rad"));
       break;
     }

@@ -1,6 +1,8 @@
 // resolved_yaml(): every resolved setting of a Scene as YAML, with units as comments (printed by `polyfloe check`,
 // written next to the results, and read back by parse_scene to the same settings).
+#include <filesystem>
 #include <sstream>
+#include <system_error>
 
 #include "scene/scene_reader.h"
 #include "scene/yaml_format.h"
@@ -60,7 +62,11 @@ std::string resolved_yaml(const Scene& s) {
   auto opt = [](const std::optional<double>& x) { return x ? fmt(*x) : std::string("auto"); };
   auto on = [](bool b) { return b ? "true" : "false"; };
   o << "# Scene '" << s.name << "', every setting resolved (units in the comments).\n";
-  if (!s.source_path.empty()) o << "# from: " << s.source_path << "\n";
+  if (!s.source_path.empty()) {  // one spelling of the file (links and '..' resolved): restarts compare this text
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::weakly_canonical(s.source_path, ec);
+    o << "# from: " << (ec ? s.source_path : p.string()) << "\n";
+  }
   for (const std::string& ov : s.overrides) o << "# --set " << ov << "\n";
   o << "name: " << quoted(s.name) << "\n";
   o << "run:\n"

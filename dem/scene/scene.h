@@ -54,6 +54,9 @@ struct CheckpointSettings {
 };
 
 struct OutputSettings {
+  // Frames a run may write (a frame per interval, at most one per step): each is a file per series, so a typo in
+  // the interval's unit would otherwise fill the disk.
+  static constexpr double kMaxFrames = 1.0e6;
   double interval = 5.0;      // simulated time between frames [s], > 0
   bool vtk = true;            // VTK .vtp frames + .pvd series
   bool contacts = true;       // contact series (.vtp + .pvd) alongside the floes
@@ -85,6 +88,12 @@ enum class FloeShape {
 
 // Random convex floes placed in a rectangle at a target concentration, without initial contact.
 struct FloeFieldSpec {
+  static constexpr double kMinSize = 0.01;  // allowed floe sizes [m]
+  static constexpr double kMaxSize = 1e5;
+  // Placement tries in all before the generator gives up, whatever max_attempts allows: kBaseAttempts plus
+  // kAttemptsPerFloe per floe (a field that fills in time takes a few tries per floe; seconds of tries in all).
+  static constexpr double kBaseAttempts = 1e7;
+  static constexpr double kAttemptsPerFloe = 200.0;
   Vec2 region_min{0.0, 0.0};   // [m]
   Vec2 region_max{1000.0, 1000.0};  // [m]
   double concentration = 0.5;  // ice area / region area [-], (0, 0.7]
@@ -210,6 +219,9 @@ double reference_speed(const Scene& scene);
 // Throws SceneError when run.duration would take more than kMaxSteps steps.
 inline constexpr double kMaxSteps = 1e12;
 double time_step(const Scene& scene, const dynamics::World& world);
+// Throws SceneError when the run at step `dt` [s] would take more than kMaxSteps steps or write more than
+// OutputSettings::kMaxFrames frames.
+void check_run_length(const Scene& scene, double dt);
 
 // The SpatialWorld of a spatial scene (scene.spatial set). Throws SceneError naming the body that is invalid.
 dynamics::SpatialWorld build_spatial_world(const Scene& scene);

@@ -1,6 +1,7 @@
 // The scene schema, one read_*() function per block, on the schema walker of schema.h; --set overrides.
 #include "scene/scene_reader.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -24,6 +25,7 @@
 #include "scene/channel.h"
 #include "scene/forcing_reader.h"
 #include "scene/yaml_format.h"
+#include "scene/yaml_limits.h"
 
 namespace polyfloe::scene {
 
@@ -95,8 +97,9 @@ void read_output(MapReader m, OutputSettings& o) {
 }
 
 void read_ice(MapReader m, Scene& s) {
-  m.number("density", s.ice_density, positive("kg/m^3"));
-  m.number("youngs_modulus", s.world.contact.youngs_modulus, positive("Pa"));
+  // Bounds that keep every derived quantity (contact stiffness, duration, the automatic step) a normal double.
+  m.number("density", s.ice_density, closed(1.0, 1e5, "kg/m^3"));
+  m.number("youngs_modulus", s.world.contact.youngs_modulus, closed(1e3, 1e13, "Pa"));
   m.number("poisson_ratio", s.world.contact.poisson_ratio, Range{0.0, 0.5, false, true, "-"});
   m.finish();
 }
@@ -185,16 +188,15 @@ BodySpec read_body(MapReader m) {
 
 void read_floes(const Context& ctx, const Field& f, std::vector<BodySpec>& bodies) {
   if (!f.value.IsDefined() || f.value.IsNull()) return;
-  std::vector<Field> id_fields;
+  std::map<std::uint64_t, std::size_t> first_with_id;  // id -> the floe that gave it first
   for (const Field& item : list_items(ctx, f, "a list of floes (each a block of keys)")) {
     bodies.push_back(read_body(MapReader(ctx, item)));
-    if (bodies.back().id) {
-      for (std::size_t j = 0; j < bodies.size() - 1; ++j) {
-        if (bodies[j].id == bodies.back().id)
-          ctx.fail({static_cast<const YAML::Node&>(item.value)["id"], YAML::Node(), join(item.path, "id")},
-                   "id " + std::to_string(*bodies.back().id) + " is already used by " + f.path + "." +
-                       std::to_string(j) + " (" + bodies[j].source.where + ")");
-      }
+    if (const auto id = bodies.back().id) {
+      const auto [it, fresh] = first_with_id.emplace(*id, bodies.size() - 1);
+      if (!fresh)
+        ctx.fail({static_cast<const YAML::Node&>(item.value)["id"], YAML::Node(), join(item.path, "id")},
+                 "id " + std::to_string(*id) + " is already used by " + f.path + "." + std::to_string(it->second) +
+                     " (" + bodies[it->second].source.where + ")");
     }
   }
 }
@@ -211,8 +213,9 @@ FloeFieldSpec read_floe_field(MapReader m) {
   m.number("concentration", s.concentration, Range{0.0, 0.7, true, false, "-"});
   {
     MapReader size = m.block("size");
-    size.number("min", s.size_min, positive("m"));
-    size.number("max", s.size_max, positive("m"));
+    // From a centimetre to 100 km: beyond, areas under- or overflow and no contact resolves.
+    size.number("min", s.size_min, closed(FloeFieldSpec::kMinSize, FloeFieldSpec::kMaxSize, "m"));
+    size.number("max", s.size_max, closed(FloeFieldSpec::kMinSize, FloeFieldSpec::kMaxSize, "m"));
     size.number("exponent", s.exponent, closed(0.0, 10.0, "-"));
     if (s.size_max < s.size_min) {
       const auto f = size.take("max");
@@ -335,6 +338,9 @@ SpatialBodySpec read_spatial_body(MapReader m) {
     r->number("angle", b.rotation_angle, any("rad"));
     double deg = 0.0;
     if (r->number("angle_deg", deg, any("deg"))) b.rotation_angle = deg * std::numbers::pi / 180.0;
+    if (r->has("axis") && !r->has("angle") && !r->has("angle_deg"))
+      c.fail(*r->take("axis"), "a rotation about this axis needs its angle: give rotation.angle [rad] or "
+                               "rotation.angle_deg [deg]");
     r->finish();
   }
   if (auto f = m.take("velocity")) b.velocity = to_vec3(ctx, *f, any("m/s"));
@@ -355,9 +361,11 @@ SpatialSpec read_spatial(MapReader m) {
   SpatialSpec s;
   s.source.where = ctx.where(m.self());
   if (auto f = m.take("gravity")) s.gravity = to_vec3(ctx, *f, any("m/s^2"));
-  m.boolean("buoyancy", s.buoyancy);
+  if (m.boolean("buoyancy", s.buoyancy) && s.buoyancy && !(s.gravity.norm() > 0.0))
+    ctx.fail(*m.take("buoyancy"), "buoyancy needs gravity (Archimedes' force is the weight of the displaced water): "
+                                  "give spatial.gravity, for example [0, 0, -9.81]");
   m.number("water_level", s.water_level, any("m"));
-  m.number("water_density", s.water_density, positive("kg/m^3"));
+  m.number("water_density", s.water_density, closed(1.0, 1e5, "kg/m^3"));
   m.choice("narrow_phase", s.narrow_phase,
            {{"sat", dynamics::SpatialNarrowPhase::sat},
             {"gjk_epa_tiebreak", dynamics::SpatialNarrowPhase::gjk_epa_tiebreak},
@@ -489,6 +497,7 @@ void apply_override(Context& ctx, YAML::Node& root, const std::string& arg) {
   } catch (const YAML::Exception& e) {
     throw SceneError("--set " + key + ": cannot read the value '" + text + "' as YAML: " + e.msg);
   }
+  check_tree_limits(value, "--set " + key);
   if (!root.IsMap()) root.reset(YAML::Node(YAML::NodeType::Map));
   set_path(ctx, root, keys, 0, "", value, key);
 }
@@ -539,12 +548,16 @@ Scene parse_scene(const std::string& text, const std::string& display_name, cons
   YAML::Node root;
   try {
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw SceneError(display_name + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
+                     ": blocks nested more than " + std::to_string(e.depth()) + " levels deep (a scene nests some 5)");
   } catch (const YAML::ParserException& e) {
     throw SceneError(display_name + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
                      ": YAML syntax error: " + e.msg);
   } catch (const YAML::Exception& e) {
     throw SceneError(display_name + ": cannot read YAML: " + e.msg);
   }
+  check_tree_limits(root, display_name);  // before any other walk of the tree
   if (const auto open = unclosed_quote(text, root))
     throw SceneError(display_name + ":" + std::to_string(open->line + 1) + ":" + std::to_string(open->column + 1) +
                      ": YAML syntax error: the quoted string that starts here is never closed");
@@ -552,10 +565,13 @@ Scene parse_scene(const std::string& text, const std::string& display_name, cons
     throw SceneError(ctx.where({root, YAML::Node(), ""}) + ": a scene is a block of keys (name, run, ...), got " +
                      describe(root));
   for (const std::string& o : overrides) apply_override(ctx, root, o);
+  if (!overrides.empty()) check_tree_limits(root, display_name);  // an override may use a block twice
 
   Scene s;
+  // The default name is the file's stem, under the rule 'name:' follows (results/<name> must be a folder below
+  // results/): a stem such as '..' (from '...yaml') or '.' falls back to "scene".
   s.name = std::filesystem::path(display_name).stem().string();
-  if (s.name.empty()) s.name = "scene";
+  if (s.name.empty() || s.name == "." || s.name == ".." || s.name.size() > 200) s.name = "scene";
   s.source_path = display_name;
   s.source_text = text;
   s.overrides = overrides;
@@ -568,15 +584,7 @@ Scene parse_scene(const std::string& text, const std::string& display_name, cons
 }
 
 Scene read_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  const std::string name = file.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw SceneError(name + ": cannot read the scene file: it is a directory");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(name + ": cannot read the scene file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw SceneError(name + ": cannot read the scene file: " + std::strerror(errno));
-  return parse_scene(text.str(), name, overrides);
+  return parse_scene(read_text_file(file, kMaxSceneBytes, "scene file"), file.string(), overrides);
 }
 
 }  // namespace polyfloe::scene

@@ -10,12 +10,20 @@
 namespace polyfloe::scene::detail {
 
 // What a node is, for "expected X, got Y".
+std::string excerpt(const std::string& text) {
+  constexpr std::size_t kShown = 60;
+  if (text.size() <= kShown) return text;
+  std::size_t cut = 40;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+  return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
 std::string describe(const YAML::Node& n) {
   if (!n.IsDefined() || n.IsNull()) return "nothing";
   if (n.IsMap()) return "a map";
   if (n.IsSequence()) return "a list of " + std::to_string(n.size()) + " items";
-  if (n.Tag() == "!") return "the quoted string '" + n.Scalar() + "'";
-  return "'" + n.Scalar() + "'";
+  if (n.Tag() == "!") return "the quoted string '" + excerpt(n.Scalar()) + "'";
+  return "'" + excerpt(n.Scalar()) + "'";
 }
 
 
@@ -47,7 +55,7 @@ double to_number(const Context& ctx, const Field& f, const Range& r, const char*
   if (t == NumberText::not_a_number)
     ctx.fail(f, "expected a number [" + std::string(r.unit) + "]" + alternative + ", got " + describe(f.value));
   if (t == NumberText::non_finite) ctx.fail(f, f.value.Scalar() + " is not a finite number");
-  if (!r.contains(x)) ctx.fail(f, f.value.Scalar() + " is outside the allowed range " + r.text());
+  if (!r.contains(x)) ctx.fail(f, excerpt(f.value.Scalar()) + " is outside the allowed range " + r.text());
   return x;
 }
 

@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -33,8 +34,18 @@ struct Range {
     return std::string(lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]") + " [" + unit + "]";
   }
 };
-inline Range any(const char* unit) { return {-kInf, kInf, true, true, unit}; }
-inline Range positive(const char* unit) { return {0.0, kInf, true, true, unit}; }
+// Any value a physical quantity of the unit can take: speeds (and rates) within 1 km/s (1,000 rad/s, 1,000 m/s^2)
+// positions within 10^9 m and angles within 10^6 rad (10^8 deg), so that no product of user numbers in the models overflows and a run cannot blow up
+// for a reason other than the number given; other units are not bounded.
+inline double physical_cap(const char* unit) {
+  const std::string_view u(unit);
+  return u == "m/s" || u == "rad/s" || u == "m/s^2" ? 1e3 : u == "m" ? 1e9 : u == "rad" ? 1e6 : u == "deg" ? 1e8 : kInf;
+}
+inline Range any(const char* unit) {
+  const double cap = physical_cap(unit);
+  return {-cap, cap, cap == kInf, cap == kInf, unit};
+}
+inline Range positive(const char* unit) { return {0.0, physical_cap(unit), true, physical_cap(unit) == kInf, unit}; }
 inline Range at_least(double lo, const char* unit) { return {lo, kInf, false, true, unit}; }
 inline Range closed(double lo, double hi, const char* unit) { return {lo, hi, false, false, unit}; }
 
@@ -84,8 +95,10 @@ class Context {
 // ---------------------------------------------------------------------------------------------------------------
 // Typed values: each reads one node or fails naming where it is and what is allowed.
 
-// What a node is, for "expected X, got Y".
+// What a node is, for "expected X, got Y"; a long value is shown by its start and its length.
 std::string describe(const YAML::Node& n);
+// `text` as a message quotes it: at most 60 characters (the first 40, then "... (N characters)").
+std::string excerpt(const std::string& text);
 
 enum class NumberText { ok, not_a_number, non_finite };
 inline bool plain_scalar(const YAML::Node& n) { return n.IsDefined() && n.IsScalar() && n.Tag() != "!"; }
@@ -190,9 +203,9 @@ class MapReader {
     const auto f = take(key);
     if (!f) return false;
     text(key, out);
-    if (out.empty() || out == "." || out == ".." || out.find('/') != std::string::npos)
-      ctx_.fail(*f, "expected a name usable as a folder name (not empty, no '/', not '.' or '..'), got '" + out +
-                        "'");
+    if (out.empty() || out == "." || out == ".." || out.find('/') != std::string::npos || out.size() > 200)
+      ctx_.fail(*f, "expected a name usable as a folder name (not empty, at most 200 bytes, no '/', not '.' or "
+                    "'..'), got '" + excerpt(out) + "'");
     return true;
   }
   bool vec2(const char* key, Vec2& out, const char* unit) {
@@ -234,7 +247,7 @@ class MapReader {
       for (const std::string& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
       const std::string in = self_.path.empty() ? "at the top level" : "in '" + self_.path + "'";
       const Field f{e.key, e.key, join(self_.path, e.name)};
-      throw SceneError(ctx_.where(f) + ": unknown key '" + f.path + "'; allowed " + in + ": " + allowed);
+      throw SceneError(ctx_.where(f) + ": unknown key '" + excerpt(f.path) + "'; allowed " + in + ": " + allowed);
     }
   }
 

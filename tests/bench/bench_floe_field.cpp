@@ -1,14 +1,21 @@
 // Floe-field generation at the paper's settings (power-law sizes 5-100 m, alpha = 2, 5-10 corners): the whole
 // generate_floe_field() for a 1 km square at 50 % and 60 % (~1.2k / 1.4k floes) and for an 8 km square at 60 %
 // (~97k floes; the [fields] target: 10^5 floes at 60 % in under 10 s on one core). Counters: floes, seconds per
-// field, realised concentration, fitted size exponent and mean circularity.
+// field, realised concentration, fitted size exponent and mean circularity. BM_ExplicitFloes: a scene that lists N
+// floes one by one, read and built (the initial-overlap check through the broad phase: time per floe flat in N).
 //   ./build/tests/bench_floe_field --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <random>
 #include <vector>
 
+#include <cmath>
+#include <string>
+
+#include "dynamics/world.h"
 #include "geometry/voronoi.h"
+#include "scene/scene.h"
+#include "scene/scene_reader.h"
 #include "scene/field_statistics.h"
 #include "scene/floe_field.h"
 #include "thread_clock.h"
@@ -54,9 +61,30 @@ void BM_VoronoiCells(benchmark::State& state) {
       1e6 * (tsupport::thread_cpu_seconds() - cpu0) / (static_cast<double>(n) * static_cast<double>(state.iterations()));
 }
 
+// A scene of N explicit 8 m squares on a 10 m lattice (each checked against the others for initial overlap),
+// parsed and built; seconds and microseconds per floe.
+void BM_ExplicitFloes(benchmark::State& state) {
+  const auto n = static_cast<int>(state.range(0));
+  const int side = static_cast<int>(std::ceil(std::sqrt(n)));
+  std::string text = "run: {duration: 1}\nfloes:\n";
+  for (int i = 0; i < n; ++i)
+    text += "  - {rectangle: {width: 8, height: 8}, position: [" + std::to_string(10 * (i % side)) + ", " +
+            std::to_string(10 * (i / side)) + "]}\n";
+  const double cpu0 = tsupport::thread_cpu_seconds();
+  for (auto _ : state) {
+    const scene::Scene sc = scene::parse_scene(text, "explicit.yaml");
+    const dynamics::World w = scene::build_world(sc);
+    benchmark::DoNotOptimize(w.size());
+  }
+  const double seconds = (tsupport::thread_cpu_seconds() - cpu0) / static_cast<double>(state.iterations());
+  state.counters["seconds"] = seconds;
+  state.counters["us_per_floe"] = 1e6 * seconds / n;
+}
+
 }  // namespace
 
 BENCHMARK(BM_VoronoiCells)->Arg(1000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExplicitFloes)->Arg(10000)->Arg(40000)->Arg(200000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_GenerateFloeField)->Args({1000, 50})->Args({1000, 60})->Args({8000, 60})->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -1,14 +1,18 @@
 // The polyfloe command line: help, version, exit codes 0/2/3, messages that name file, line and key, and no
 // output folder left behind by bad input.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <thread>
 
 #include "scratch_dir.h"
 #include "cli_support.h"
@@ -179,16 +183,97 @@ TEST(Cli, TinyOutputIntervalFinishes) {
   fs::remove_all(out);
 }
 
-TEST(Cli, RunKeepsUnrelatedFilesInTheOutputFolder) {
+std::string slurp_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The output folder contract (docs/user-guide.md, "The output folder"): a rerun removes what the previous run's
+// manifest lists and nothing else, however alike the names; a folder of unlisted results is refused, untouched.
+TEST(Cli, RerunRemovesOnlyWhatThePreviousRunListed) {
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_keep");
   fs::remove_all(out);
-  fs::create_directories(out / "floes");
+  Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
+                          " --set run.duration=0.4 --set output.interval=0.1 --set output.checkpoint.every=1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(out / "floes" / "floes_000004.vtp"));
+  ASSERT_TRUE(fs::exists(out / ".polyfloe-manifest"));
+  // The user's own files, named like the program's.
   std::ofstream(out / "floes" / "notes.txt") << "mine";
-  std::ofstream(out / "floes" / "floes_000099.vtp") << "stale frame of an earlier run";
+  std::ofstream(out / "floes" / "floes_12.vtp") << "mine";
+  std::ofstream(out / "floes" / "floes_000099.vtp") << "mine";
+  std::ofstream(out / "checkpoints" / "checkpoint_best.h5") << "mine";
+  std::ofstream(out / "checkpoints" / ".checkpoint_000004.h5.tmp.1.2") << "left by a killed writer";
+  std::ofstream(out / "results.csv") << "mine";
+  r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2 --set output.interval=0.1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* mine : {"floes/notes.txt", "floes/floes_12.vtp", "floes/floes_000099.vtp",
+                           "checkpoints/checkpoint_best.h5", "results.csv"})
+    EXPECT_TRUE(fs::exists(out / mine)) << mine << " was removed";
+  EXPECT_TRUE(fs::exists(out / "floes" / "floes_000002.vtp"));
+  EXPECT_FALSE(fs::exists(out / "floes" / "floes_000003.vtp")) << "a frame of the previous run stayed";
+  EXPECT_FALSE(fs::exists(out / "checkpoints" / "checkpoint_000004.h5")) << "a checkpoint of the previous run stayed";
+  EXPECT_FALSE(fs::exists(out / "checkpoints" / ".checkpoint_000004.h5.tmp.1.2"));
+  fs::remove_all(out);
+
+  // Results polyfloe did not list (another program's, or a version before the manifest): refused, untouched.
+  fs::create_directories(out / "floes");
+  std::ofstream(out / "results.h5") << "not ours";
+  r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("exists but no polyfloe run into this folder wrote it"), std::string::npos) << r.output;
+  EXPECT_EQ(slurp_file(out / "results.h5"), "not ours");
+  EXPECT_FALSE(fs::exists(out / ".polyfloe-lock"));
+  EXPECT_FALSE(fs::exists(out / ".polyfloe-manifest"));
+  fs::remove_all(out);
+}
+
+// An empty output name is refused (it used to mean the default folder).
+TEST(Cli, EmptyOutputNameIsRefused) {
+  const Result r = run_polyfloe("run " + kScene + " -o ''");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("option -o needs a folder name"), std::string::npos) << r.output;
+}
+
+// A scene file named "...yaml" without a name: the default name is "scene", never ".." (which made the default
+// folder results/.. = the current folder, where the run replaced the user's results.h5).
+TEST(Cli, ADotNamedSceneFileWritesBelowResults) {
+  const fs::path dir = polyfloe::tsupport::scratch_dir("polyfloe_cli_dots");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "...yaml") << "run: {duration: 0.1}\nfloes:\n  - rectangle: {width: 10, height: 10}\n";
+  std::ofstream(dir / "results.h5") << "the user's";
+  const std::string cmd = "cd " + dir.string() + " && " + POLYFLOE_BINARY + " run ...yaml > log 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp_file(dir / "log");
+  EXPECT_EQ(slurp_file(dir / "results.h5"), "the user's");
+  EXPECT_TRUE(fs::exists(dir / "results" / "scene" / "results.h5"));
+  fs::remove_all(dir);
+}
+
+// One run at a time per folder: a second run into a folder a run holds is refused, naming the first's process.
+TEST(Cli, SecondRunIntoABusyFolderIsRefused) {
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_busy");
+  fs::remove_all(out);
+  const std::string first = "exec " + std::string(POLYFLOE_BINARY) + " run " + kScene + " -o " + out.string() +
+                            " --set run.duration=1e6 --set output.interval=1e5 > /dev/null 2>&1";
+  FILE* pipe = popen(("sh -c '" + first + "' & echo $!").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  long pid = 0;
+  ASSERT_EQ(std::fscanf(pipe, "%ld", &pid), 1);
+  pclose(pipe);
+  for (int i = 0; i < 200 && !fs::exists(out / "floes.pvd"); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   const Result r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2");
-  EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_TRUE(fs::exists(out / "floes" / "notes.txt"));
-  EXPECT_FALSE(fs::exists(out / "floes" / "floes_000099.vtp"));
+  kill(static_cast<pid_t>(pid), SIGKILL);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("(process " + std::to_string(pid) + ") is writing into it"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "floes" / "floes_000000.vtp")) << "the second run removed the first's files";
+  // Once the first is gone (killed: the kernel releases its lock), the folder is free again.
+  for (int i = 0; i < 100 && kill(static_cast<pid_t>(pid), 0) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const Result again = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2");
+  EXPECT_EQ(again.code, 0) << again.output;
   fs::remove_all(out);
 }
 
@@ -262,7 +347,7 @@ TEST(Cli, VelocityGridTooLargeIsRefusedBeforeAnyOutput) {
   fs::remove_all(out);
   const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set output.velocity_grid.cell=0.5");
   EXPECT_EQ(r.code, 2) << r.output;
-  EXPECT_NE(r.output.find("output.velocity_grid: the bodies span"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("output.velocity_grid.cell: the bodies span"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("raise output.velocity_grid.cell"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
   // A grid that fits runs and lists its series.

@@ -499,6 +499,35 @@ TEST(Restart, BadCheckpointsAreRefusedBeforeAnyOutputIsTouched) {
   refused({"run", scene, "--set", "output.checkpoint.keep=0", "--restart", good.string()}, "output.checkpoint.keep");
   // --restart is an option of run only.
   EXPECT_EQ(run_to_end({"check", scene, "--restart", good.string()}, base / "log"), 2);
+  // A run.duration that ends before the checkpoint: the frames past it cannot be taken back.
+  refused({"run", scene, "--set", "run.duration=0.5", "--restart", run.string()},
+          "run.duration = 0.5 s ends before the checkpoint");
+  fs::remove_all(base);
+}
+
+// The same scene under another spelling of its path (./, .., a link) is the same scene: the restart says nothing of
+// a changed scene, and goes on.
+TEST(Restart, AnotherSpellingOfTheScenePathIsTheSameScene) {
+  const fs::path base = scratch("spelling");
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const std::string scene = kSource + "/dem/scenes/two_floes.yaml";
+  const fs::path run = base / "run";
+  ASSERT_EQ(run_to_end({"run", scene, "-o", run.string(), "--set", "output.checkpoint.every=1", "--set",
+                        "run.duration=0.5"},
+                       base / "log"),
+            0)
+      << slurp(base / "log");
+  fs::create_symlink(kSource + "/dem/scenes", base / "scenes");
+  const std::string other = (base / "scenes" / ".." / "scenes" / "." / "two_floes.yaml").string();
+  ASSERT_EQ(run_to_end({"run", other, "--set", "output.checkpoint.every=1", "--set", "run.duration=1", "--restart",
+                        run.string()},
+                       base / "log"),
+            0)
+      << slurp(base / "log");
+  const std::string log = slurp(base / "log");
+  EXPECT_NE(log.find("run.duration"), std::string::npos) << log;  // the one real change is listed ...
+  EXPECT_EQ(log.find("# from:"), std::string::npos) << log;     // ... the path's spelling is not
   fs::remove_all(base);
 }
 

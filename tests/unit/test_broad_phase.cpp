@@ -220,3 +220,33 @@ TEST(BroadPhase, NonFiniteBoxesEnterNoCellAndTheOthersKeepTheirPairs) {
   EXPECT_FALSE(want.empty());
   EXPECT_EQ(g, want);
 }
+
+// Found by fuzzing restarts (tests/fuzz/regressions/fuzz_checkpoint/broad-phase-cell-of-zero-at-far-positions):
+// boxes so far from the origin that their extent rounds to zero gave a cell size of 0, which the grid's growth
+// loop never enlarged. Far, huge and overflowing spans now give a grid of a few cells with every pair found.
+TEST(BroadPhase, BoxesFarFromTheOriginOrSpanningTheRangeOfDoubles) {
+  for (const double far : {1e300, 1e17, -1e200}) {
+    SCOPED_TRACE(far);
+    const std::vector<Aabb> boxes{{Vec2{far, far}, Vec2{far, far}}, {Vec2{far, far}, Vec2{far, far}},
+                                  {Vec2{0.0, 0.0}, Vec2{1.0, 1.0}}};
+    const std::vector<std::uint8_t> dyn{1, 1, 1};
+    std::vector<contact::CandidatePair> got;
+    contact::GridBroadPhase grid;
+    grid.find_pairs(boxes, dyn, got);
+    PairList g;
+    for (const auto& p : got) g.emplace_back(p.a, p.b);
+    std::sort(g.begin(), g.end());
+    EXPECT_EQ(g, brute_pairs(boxes, dyn));
+  }
+  const double big = 1e308;
+  const std::vector<Aabb> spread{{Vec2{-big, -big}, Vec2{-big, -big}}, {Vec2{big, big}, Vec2{big, big}},
+                                 {Vec2{0.0, 0.0}, Vec2{1.0, 1.0}}, {Vec2{0.5, 0.5}, Vec2{2.0, 2.0}}};
+  const std::vector<std::uint8_t> dyn{1, 1, 1, 1};
+  std::vector<contact::CandidatePair> got;
+  contact::GridBroadPhase grid;
+  grid.find_pairs(spread, dyn, got);  // the span overflows to infinity
+  PairList g;
+  for (const auto& p : got) g.emplace_back(p.a, p.b);
+  std::sort(g.begin(), g.end());
+  EXPECT_EQ(g, brute_pairs(spread, dyn));
+}

@@ -63,7 +63,23 @@ TEST(BuildWorld, MoreStepsThanARunMayTakeIsAnError) {
           << m;
     }
   }
-  s.time.duration = 1e8;  // 1e11 steps: allowed
+  s.time.duration = 1e8;  // 1e11 steps: allowed, with frames no more often than 10^6 in all
+  s.output.interval = 1e3;
+  EXPECT_EQ(time_step(s, w), 1e-3);
+  // Frames: one per interval, at most one per step, at most 10^6 in all; the message names output.interval.
+  s.output.interval = 5.0;
+  try {
+    (void)time_step(s, w);
+    ADD_FAILURE() << "2e7 frames accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("output.interval 5 s over run.duration 1e+08 s is 2e+07 frames"),
+              std::string::npos)
+        << e.what();
+  }
+  s.time.duration = 1e4;
+  s.output.interval = 1e-9;  // 1e13 intervals, but a frame at most every step: 1e7 frames
+  EXPECT_THROW((void)time_step(s, w), SceneError);
+  s.time.duration = 10.0;  // 1e4 steps, a frame at every one: allowed
   EXPECT_EQ(time_step(s, w), 1e-3);
 }
 

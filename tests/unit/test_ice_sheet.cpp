@@ -165,7 +165,7 @@ TEST(IceSheetScene, BlockKeysRoundTripAndErrors) {
   EXPECT_EQ(w.size(), voronoi_sheet(*s.ice_sheet).size());
 
   std::string m = parse_error("ice_sheet: {cell_size: -1}\n");
-  EXPECT_TRUE(starts_with(m, "t.yaml:1:24: key 'ice_sheet.cell_size': -1 is outside the allowed range (0, inf) [m]"))
+  EXPECT_TRUE(starts_with(m, "t.yaml:1:24: key 'ice_sheet.cell_size': -1 is outside the allowed range (0, 1e9] [m]"))
       << m;
   m = parse_error("ice_sheet: {region: [0, 0, 1000, 1000], cell_size: 0.5}\n");
   EXPECT_TRUE(contains(m, "key 'ice_sheet.cell_size': the region holds") && contains(m, "raise ice_sheet.cell_size"))

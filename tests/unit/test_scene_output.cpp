@@ -31,7 +31,7 @@ TEST(SceneOutput, VelocityGridDefaultsAndKeys) {
 TEST(SceneOutput, VelocityGridErrorsNameKeyLineAndRange) {
   const std::string one(kOneFloe);
   std::string m = parse_error(one + "output:\n  velocity_grid: {cell: 0}\n");
-  EXPECT_TRUE(starts_with(m, "t.yaml:4:25: key 'output.velocity_grid.cell': 0 is outside the allowed range (0, inf) [m]"))
+  EXPECT_TRUE(starts_with(m, "t.yaml:4:25: key 'output.velocity_grid.cell': 0 is outside the allowed range (0, 1e9] [m]"))
       << m;
   m = parse_error(one + "output:\n  velocity_grid: {samples_per_frame: 0}\n");
   EXPECT_TRUE(contains(m, "key 'output.velocity_grid.samples_per_frame'") && contains(m, "1") && contains(m, "1000"))
