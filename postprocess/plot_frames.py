@@ -48,8 +48,15 @@ def main():
         motion = f["/floes/motion"][:]
         vel = f["/state/velocity"]
         vmax = a.vmax or max(float(np.max(np.linalg.norm(vel[k][:, :2], axis=1)[motion == 0])) for k in range(len(times)))
-        fig, axes = plt.subplots(1, len(a.times), figsize=(5.0 * len(a.times), 4.2), squeeze=False)
-        for ax, t in zip(axes[0], a.times):
+        step = float(np.median(np.diff(times))) if len(times) > 1 else 0.0
+        for t in a.times:
+            k = int(np.argmin(np.abs(times - t)))
+            if abs(float(times[k]) - t) > 0.5 * step + 1e-9 * max(1.0, abs(t)):
+                sys.exit(f"plot_frames: {a.results} has no frame at t = {t:g} s: its frames span "
+                         f"{times[0]:g} to {times[-1]:g} s, every {step:g} s")
+        fig, axes = plt.subplots(1, len(a.times), figsize=(5.0 * len(a.times), 4.2), squeeze=False, sharey=True,
+                                 constrained_layout=True)
+        for i, (ax, t) in enumerate(zip(axes[0], a.times)):
             k = int(np.argmin(np.abs(times - t)))
             polys = frame_polygons(f, k)
             speed = np.linalg.norm(vel[k][:, :2], axis=1)
@@ -65,7 +72,8 @@ def main():
             ax.set_aspect("equal")
             ax.set_title(f"t = {times[k]:.0f} s")
             ax.set_xlabel("x [m]")
-            ax.set_ylabel("y [m]")
+            if i == 0:  # the panels share y: one label, none overlapping the neighbour
+                ax.set_ylabel("y [m]")
         fig.colorbar(pc, ax=axes[0].tolist(), label="floe speed [m/s]", shrink=0.8)
         fig.savefig(a.output, dpi=130, bbox_inches="tight")
     print(f"wrote {a.output}")

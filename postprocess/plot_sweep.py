@@ -55,9 +55,24 @@ def members(root, family):
     return out
 
 
+def frame_near(t, want):
+    """The frame nearest to time `want`, or None when no frame lies within half a frame interval of it (the run
+    ended before `want`, or started after it)."""
+    k = int(np.argmin(np.abs(t - want)))
+    step = float(np.median(np.diff(t))) if len(t) > 1 else 0.0
+    return k if abs(float(t[k]) - want) <= 0.5 * step + 1e-9 * max(1.0, abs(want)) else None
+
+
 def at(t, y, want):
-    """y at the frame nearest to time `want`."""
-    return float(y[int(np.argmin(np.abs(t - want)))])
+    """y at the frame nearest to time `want`; NaN when the run has no frame there."""
+    k = frame_near(t, want)
+    return float("nan") if k is None else float(y[k])
+
+
+def legend_if_labelled(ax, **kw):
+    """A legend only where something carries a label (matplotlib warns otherwise)."""
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(**kw)
 
 
 def floe_shapes(f):
@@ -104,7 +119,7 @@ def plot_flow(root, fams, out):
         for ax in axes[row]:
             ax.set_xlabel("t [s]")
             ax.grid(alpha=0.3)
-            ax.legend(fontsize=8)
+            legend_if_labelled(ax, fontsize=8)
     fig.tight_layout()
     path = os.path.join(out, "sweep_flow.png")
     fig.savefig(path, dpi=120)
@@ -140,19 +155,28 @@ def summarise(root, fams):
             for key in ("floes", "end_time", "area_passed", "mean_speed_170", "mean_speed_200", "strait_speed_200",
                         "mean_speed_end"):
                 v = np.array([r[key] for r in rows], dtype=float)
-                entry[key] = {"mean": float(v.mean()), "std": float(v.std(ddof=1)) if len(v) > 1 else 0.0,
-                              "values": [float(x) for x in v]}
+                # A run without a frame at the time (NaN) makes the statistic n/a: null in the JSON summary.
+                finite = bool(np.all(np.isfinite(v)))
+                entry[key] = {"mean": float(v.mean()) if finite else None,
+                              "std": (float(v.std(ddof=1)) if len(v) > 1 else 0.0) if finite else None,
+                              "values": [float(x) if np.isfinite(x) else None for x in v]}
             table[fam][name] = entry
     return table
 
 
 def print_summary(table):
+    ends = [v for ms in table.values() for e in ms.values() for v in e["end_time"]["values"] if v is not None]
+    if ends and min(ends) < 200.0 - 1e-9:
+        print(f"plot_sweep: note: the shortest run ends at t = {min(ends):g} s; columns at 170 s and 200 s are "
+              "n/a where a run has no frame there", file=sys.stderr)
     print("| family | member | seeds | floes | area passed at end [10³ m²] | mean speed 170 s [m/s] | "
           "mean speed 200 s [m/s] | strait speed 200 s [m/s] | jammed |")
     print("|---|---|---|---|---|---|---|---|---|")
     for fam, ms in table.items():
         for name, e in ms.items():
             def ms_(key, scale=1.0, digits=2):
+                if e[key]["mean"] is None:
+                    return "n/a"
                 return f"{e[key]['mean'] / scale:.{digits}f} ± {e[key]['std'] / scale:.{digits}f}"
             print(f"| {fam} | {name} | {e['seeds']} | {ms_('floes', digits=0)} | {ms_('area_passed', 1e3, 1)} | "
                   f"{ms_('mean_speed_170')} | {ms_('mean_speed_200')} | {ms_('strait_speed_200')} | "
@@ -187,7 +211,7 @@ def plot_fields(root, out):
     axes[1].set_ylabel("probability density")
     axes[1].set_title("initial circularity")
     for ax in axes:
-        ax.legend(fontsize=8)
+        legend_if_labelled(ax, fontsize=8)
         ax.grid(alpha=0.3, which="both")
     fig.tight_layout()
     path = os.path.join(out, "sweep_fields.png")
@@ -201,6 +225,15 @@ def plot_maps(root, fam, out, times=(170.0, 200.0)):
     ms = members(root, fam)
     if not ms:
         return
+    with h5py.File(ms[0][1][0], "r", swmr=True) as f:
+        t = f["/time"][:]
+    missing = [want for want in times if frame_near(t, want) is None]
+    if missing:
+        print(f"plot_sweep: {fam}: no maps at t = {', '.join(f'{w:g}' for w in missing)} s: the runs end at "
+              f"t = {t[-1]:g} s (maps show the frames at 170 s and 200 s of the paper's runs)", file=sys.stderr)
+        times = tuple(w for w in times if w not in missing)
+        if not times:
+            return
     grids = {}
     for name, paths in ms:
         for path in paths:

@@ -7,7 +7,7 @@
 # (results.h5, VTK) and its log beside it. A scene shared by two families (50 %/alpha 2/5-10 and 60 %/alpha 2/5-10)
 # runs once; the other family's folder is a symbolic link to it. Runs -j at a time (default: the number of cores).
 # Arguments after -- go to every run (no spaces inside one argument). Then:
-#   /usr/bin/python3 postprocess/plot_sweep.py results/sweep -o docs/figures
+#   /usr/bin/python3 postprocess/plot_sweep.py results/sweep -o figures
 #
 #   bash scripts/sweep.sh [-j N] [-s 1,2,3] [-o DIR] [FAMILY...] [-- EXTRA --set ARGS]
 set -euo pipefail

@@ -234,8 +234,14 @@ int run_spatial_scene(const Args& args, const scene::Scene& sc) {
     std::cerr << "polyfloe: " << sc.name << ": " << world->size() << " spatial bodies, " << sc.time.duration
               << " s simulated, dt = " << dt << " s, 1 thread -> " << opt.output_dir.string() << "\n";
     const run::RunSummary s = run::run_spatial(sc, *world, opt);
-    std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n"
-              << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n";
+    std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
+    if (s.first_contact)
+      std::cout << "Contacts: the first at t = " << *s.first_contact << " s; " << s.contact_steps << " of "
+                << s.steps << " steps had one.\n";
+    else
+      std::cout << "No contact during the run: no two bodies touched (a scene about an impact did not reach it; "
+                   "check the bodies' positions, velocities and run.duration).\n";
+    std::cout << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n";
     if (sc.output.vtk)
       std::cout << "  bodies.pvd" << (sc.output.contacts ? ", contacts.pvd" : "") << "  (open in ParaView)\n";
     if (sc.output.hdf5) std::cout << "  results.h5                (time series; see docs/user-guide.md)\n";
@@ -364,7 +370,13 @@ int main(int argc, char** argv) {
               << (opt.threads == 1 ? " thread" : " threads") << " -> " << opt.output_dir.string() << "\n";
     if (sc.floe_field && args.restart.empty()) std::cerr << "polyfloe: floe field: " << scene::to_string(field) << "\n";
     const run::RunSummary s = sim->run();
-    std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
+    if (s.steps == 0)
+      std::cout << "Nothing to run: the checkpoint is the run's end (t = " << s.simulated << " s).\n";
+    else if (s.start_time > 0.0)
+      std::cout << "Done: " << s.steps << " steps, t = " << s.start_time << " -> " << s.simulated
+                << " s simulated in " << s.wall << " s wall (resumed from the checkpoint).\n";
+    else
+      std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
     if (s.channel_area_passed) {
       std::cout << "Channel: " << *s.channel_area_passed << " m^2 of ice passed the strait entrance; "
                 << (s.channel_jam_time ? "jammed from t = " + std::to_string(*s.channel_jam_time) + " s"

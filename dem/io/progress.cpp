@@ -65,8 +65,13 @@ std::string format_progress_summary(double t, double t_end, std::uint64_t steps,
          format_duration(wall_seconds) + " (" + format_rate(rate) + ")";
 }
 
-Progress::Progress(double t_end, bool interactive, std::FILE* out)
-    : t_end_(t_end), interactive_(interactive), out_(out), start_wall_(Clock::now()), last_draw_(start_wall_) {}
+Progress::Progress(double t_end, bool interactive, std::FILE* out, std::uint64_t first_step)
+    : t_end_(t_end),
+      interactive_(interactive),
+      out_(out),
+      start_wall_(Clock::now()),
+      last_draw_(start_wall_),
+      first_step_(first_step) {}
 
 Progress::~Progress() {
   if (interactive_ && drawn_width_ > 0 && !finished_) {
@@ -125,9 +130,11 @@ void Progress::update(double t, std::uint64_t steps) {
 void Progress::finish(double t, std::uint64_t steps) {
   if (finished_) return;
   finished_ = true;
-  const double wall = seconds_since_start(Clock::now());
-  const std::uint64_t taken = steps >= start_steps_ ? steps - start_steps_ : steps;
-  const std::string summary = format_progress_summary(t, t_end_, taken, wall);
+  // Never updated: the run had nothing left to do (a restart from its final checkpoint), no rate to report.
+  // The steps of the whole run; the wall time from the first update (set-up excluded), as the rates.
+  const std::string summary =
+      started_ ? format_progress_summary(t, t_end_, steps - first_step_, seconds_since_start(Clock::now()))
+               : "done: t = " + format_sim_time(t, t_end_) + " s, no step left to take";
   if (interactive_) {
     redraw(summary);
     std::fputc('\n', out_);

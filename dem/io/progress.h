@@ -28,8 +28,9 @@ std::string format_progress_summary(double t, double t_end, std::uint64_t steps,
 
 class Progress {
  public:
-  // `t_end` [s]; `interactive`: the caller passes isatty(fileno(stderr)). `out` is for tests.
-  Progress(double t_end, bool interactive, std::FILE* out = stderr);
+  // `t_end` [s]; `interactive`: the caller passes isatty(fileno(stderr)). `out` is for tests. `first_step`: the
+  // step count the run starts from (a restart: its checkpoint's), so the summary counts this run's steps.
+  Progress(double t_end, bool interactive, std::FILE* out = stderr, std::uint64_t first_step = 0);
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
   ~Progress();  // ends a half-drawn interactive line, so later messages start on their own line
@@ -52,7 +53,8 @@ class Progress {
   bool started_ = false;
   Clock::time_point start_wall_{}, last_draw_{};
   double start_t_ = 0.0;
-  std::uint64_t start_steps_ = 0;
+  std::uint64_t start_steps_ = 0;  // at the first update (rates)
+  std::uint64_t first_step_ = 0;   // at the start of the run (the summary's count)
   int next_decile_ = 1;         // non-interactive: next 10 % mark to report
   std::size_t drawn_width_ = 0;  // interactive: length of the line on screen
   bool finished_ = false;

@@ -382,7 +382,9 @@ RunSummary Simulation::run() {
     world_.compute_forces(0.0);
     write_frame();
   }
-  io::Progress progress(t_end, options_.interactive);
+  const std::uint64_t first_step = world_.step_count();
+  io::Progress progress(t_end, options_.interactive, stderr, first_step);
+  const double start_time = world_.time();
 
   // Steps of equal size; the last one is shortened to land on t_end. Frames at the first step at or after each
   // multiple of the output interval; checkpoints at every `checkpoints.every`-th frame and at the end.
@@ -429,7 +431,8 @@ RunSummary Simulation::run() {
   progress.finish(world_.time(), world_.step_count());
 
   RunSummary s;
-  s.steps = world_.step_count();
+  s.steps = world_.step_count() - first_step;
+  s.start_time = start_time;
   s.simulated = world_.time();
   s.wall = std::chrono::duration<double>(clock::now() - wall0).count();
   s.dt = dt;

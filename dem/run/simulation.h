@@ -42,14 +42,17 @@ inline constexpr const char* kInterruptedResults = ".results.h5.interrupted";
 inline constexpr const char* kResultsSnapshot = "checkpoints/results.h5";
 
 struct RunSummary {
-  std::uint64_t steps = 0;
-  double simulated = 0.0;   // [s]
+  std::uint64_t steps = 0;  // taken by this run (a restart: since its checkpoint)
+  double start_time = 0.0;  // where this run started (a restart: the checkpoint's time) [s]
+  double simulated = 0.0;   // the time reached [s]
   double wall = 0.0;        // [s]
   double dt = 0.0;          // [s]
   int frames = 0;
   std::filesystem::path output_dir;
   std::optional<double> channel_area_passed;  // scenes with a channel: net ice area through the strait [m^2]
   std::optional<double> channel_jam_time;     // ... and when it jammed [s], if it did
+  std::optional<double> first_contact;        // spatial runs: the end of the first step with a contact [s]
+  std::uint64_t contact_steps = 0;            // ... and the steps that had one
 };
 
 // Checks the state for NaN/Inf and runaway motion; throws InstabilityError with a suggestion. `dt` is the step in

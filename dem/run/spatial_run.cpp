@@ -76,20 +76,24 @@ RunSummary run_spatial(const scene::Scene& scene, dynamics::SpatialWorld& world,
   const double dt = summary.dt;
   world.compute_forces(dt);
   frame();
-  const auto total = static_cast<std::uint64_t>(std::ceil(scene.time.duration / dt - 1e-9));
-  double next_frame = scene.output.interval;
-  double last_frame = world.time();
-  for (std::uint64_t k = 1; k <= total; ++k) {
-    world.step(dt);
+  // The planar driver's schedule: steps of dt, the last one shortened to land on the end time; a frame at the
+  // first step at or after each multiple of the output interval, and at the end.
+  const double t_end = scene.time.duration, interval = scene.output.interval;
+  double next_frame = interval;
+  while (world.time() < t_end * (1.0 - 1e-12)) {
+    world.step(std::min(dt, t_end - world.time()));
     check_stability(world, dt);
-    // on the schedule, and the end state unless a frame was written in the last step
-    if (world.time() >= next_frame - 0.5 * dt || (k == total && world.time() - last_frame > 1.5 * dt)) {
+    if (!world.contacts().empty()) {
+      if (!summary.first_contact) summary.first_contact = world.time();
+      ++summary.contact_steps;
+    }
+    const bool last = world.time() >= t_end * (1.0 - 1e-12);
+    if (last || world.time() >= next_frame * (1.0 - 1e-12)) {
+      next_frame = interval * (std::floor(world.time() / interval * (1.0 + 1e-12)) + 1.0);
       frame();
-      last_frame = world.time();
-      while (next_frame <= world.time() + 0.5 * dt) next_frame += scene.output.interval;
     }
   }
-  summary.steps = world.step_count();
+  summary.steps = world.step_count();  // spatial runs always start at t = 0
   summary.simulated = world.time();
   summary.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

@@ -65,7 +65,7 @@ void read_velocity_grid(MapReader m, VelocityGridSettings& g) {
   m.boolean("enabled", g.enabled);
   m.number("cell", g.cell, positive("m"));
   if (auto f = m.take("region")) {
-    if (plain_scalar(f->value) && f->value.Scalar() == "auto") g.region.reset();
+    if (is_word(f->value, "auto")) g.region.reset();
     else g.region = to_box(ctx, *f);
   }
   m.integer("samples_per_frame", g.samples_per_frame, 1, 1000);

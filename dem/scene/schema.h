@@ -102,6 +102,11 @@ std::string excerpt(const std::string& text);
 
 enum class NumberText { ok, not_a_number, non_finite };
 inline bool plain_scalar(const YAML::Node& n) { return n.IsDefined() && n.IsScalar() && n.Tag() != "!"; }
+// A word of the schema ('auto', an enumerated value), plain or quoted: JSON, YAML's subset, quotes every word.
+// (Numbers are not words: a quoted number is refused as text.)
+inline bool is_word(const YAML::Node& n, const char* word) {
+  return n.IsDefined() && n.IsScalar() && n.Scalar() == word;
+}
 bool non_finite_spelling(const std::string& s);
 NumberText parse_double(const std::string& s, double& x);
 double to_number(const Context& ctx, const Field& f, const Range& r, const char* alternative = "");
@@ -163,7 +168,7 @@ class MapReader {
   bool number_or_auto(const char* key, std::optional<double>& out, const Range& r) {
     const auto f = take(key);
     if (!f) return false;
-    if (plain_scalar(f->value) && f->value.Scalar() == "auto") out.reset();
+    if (is_word(f->value, "auto")) out.reset();
     else out = to_number(ctx_, *f, r, " or 'auto'");
     return true;
   }
@@ -219,7 +224,7 @@ class MapReader {
     if (!f) return false;
     std::string names;
     for (const auto& [name, value] : options) {
-      if (plain_scalar(f->value) && f->value.Scalar() == name) {
+      if (is_word(f->value, name)) {
         out = value;
         return true;
       }

@@ -6,6 +6,7 @@
 //   build/tests/bench_cube_plate [-o FILE.json]   (default FILE: cube_plate.json; about 10 s)
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -115,6 +116,10 @@ int main(int argc, char** argv) {
     }
   }
   json += "\n  ]\n}\n";
+  if (const std::filesystem::path parent = std::filesystem::path(out_file).parent_path(); !parent.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);  // -o results/cube_plate.json on a fresh checkout
+  }
   std::FILE* f = std::fopen(out_file.c_str(), "w");
   if (!f || std::fputs(json.c_str(), f) < 0 || std::fclose(f) != 0) {
     std::fprintf(stderr, "cannot write %s\n", out_file.c_str());

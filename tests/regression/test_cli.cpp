@@ -330,11 +330,19 @@ TEST(Sweep, ScriptRunsFamiliesPerSeedAndThePlotsFollow) {
                   << std::string((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
   }
   EXPECT_TRUE(fs::exists(out / "fig" / "sweep_flow.png"));
-  EXPECT_TRUE(fs::exists(out / "fig" / "sweep_maps_exponent.png"));
+  // The runs end at 0.02 s: no maps "at 170 s and 200 s", and the plot says why; the summary's columns at those
+  // times are n/a (null), not the last frame's values.
+  EXPECT_FALSE(fs::exists(out / "fig" / "sweep_maps_exponent.png"));
+  std::ifstream plot_log(out / "plot.log");
+  const std::string said((std::istreambuf_iterator<char>(plot_log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(said.find("no maps at t = 170, 200 s: the runs end at t = 0.02 s"), std::string::npos) << said;
+  EXPECT_NE(said.find("columns at 170 s and 200 s are n/a"), std::string::npos) << said;
+  EXPECT_EQ(said.find("No artists with labels"), std::string::npos) << said;
   std::ifstream summary(out / "summary.json");
   const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"a1.2\""), std::string::npos) << text;
   EXPECT_NE(text.find("\"seeds\": 2"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"mean\": null"), std::string::npos) << text;
   EXPECT_NE(std::system(("bash " + src + "/scripts/sweep.sh bogus > /dev/null 2>&1").c_str()), 0);
   EXPECT_NE(std::system(("bash " + src + "/scripts/sweep.sh -s x > /dev/null 2>&1").c_str()), 0);
   fs::remove_all(out);

@@ -506,8 +506,8 @@ TEST(Restart, BadCheckpointsAreRefusedBeforeAnyOutputIsTouched) {
 }
 
 // The same scene under another spelling of its path (./, .., a link) is the same scene: the restart says nothing of
-// a changed scene, and goes on.
-TEST(Restart, AnotherSpellingOfTheScenePathIsTheSameScene) {
+// a changed scene, and goes on; its summary counts its own steps and times (a finished run: nothing to run).
+TEST(Restart, AnotherSpellingOfTheScenePathIsTheSameSceneAndTheSummaryCountsThisRun) {
   const fs::path base = scratch("spelling");
   fs::remove_all(base);
   fs::create_directories(base);
@@ -518,6 +518,15 @@ TEST(Restart, AnotherSpellingOfTheScenePathIsTheSameScene) {
                        base / "log"),
             0)
       << slurp(base / "log");
+  // A restart of the finished run has nothing to do, and says so (no rate over zero seconds).
+  ASSERT_EQ(run_to_end({"run", scene, "--set", "output.checkpoint.every=1", "--set", "run.duration=0.5", "--restart",
+                        run.string()},
+                       base / "log"),
+            0)
+      << slurp(base / "log");
+  EXPECT_NE(slurp(base / "log").find("Nothing to run: the checkpoint is the run's end (t = 0.5 s)"), std::string::npos)
+      << slurp(base / "log");
+  EXPECT_EQ(slurp(base / "log").find("steps/s"), std::string::npos) << slurp(base / "log");
   fs::create_symlink(kSource + "/dem/scenes", base / "scenes");
   const std::string other = (base / "scenes" / ".." / "scenes" / "." / "two_floes.yaml").string();
   ASSERT_EQ(run_to_end({"run", other, "--set", "output.checkpoint.every=1", "--set", "run.duration=1", "--restart",
@@ -528,6 +537,7 @@ TEST(Restart, AnotherSpellingOfTheScenePathIsTheSameScene) {
   const std::string log = slurp(base / "log");
   EXPECT_NE(log.find("run.duration"), std::string::npos) << log;  // the one real change is listed ...
   EXPECT_EQ(log.find("# from:"), std::string::npos) << log;     // ... the path's spelling is not
+  EXPECT_NE(log.find("t = 0.5 -> 1 s simulated in"), std::string::npos) << log;  // this run's part
   fs::remove_all(base);
 }
 
