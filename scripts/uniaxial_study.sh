@@ -5,24 +5,26 @@
 # and crack pictures (uniaxial_cracks.png), with the key numbers in uniaxial.json.
 #
 #   bash scripts/uniaxial_study.sh [-j N] [-o RESULTS] [-f FIGURES] [-- EXTRA --set ARGS]
-# (defaults: -j number of cores, -o results/uniaxial, -f docs/figures; about 2 minutes per run on one core)
+# (defaults: -j number of cores, -o results/uniaxial, -f RESULTS/figures; about 2 minutes per run on one core;
+# the documentation's figures: -f docs/figures)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS="$(nproc)"
 OUT="results/uniaxial"
-FIG="docs/figures"
+FIG=""
 extra=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
     -j) JOBS="$2"; shift 2 ;;
     -o) OUT="$2"; shift 2 ;;
     -f) FIG="$2"; shift 2 ;;
-    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
     --) shift; extra=("$@"); break ;;
     *) echo "uniaxial_study.sh: unknown argument '$1' (try -h)" >&2; exit 2 ;;
   esac
 done
 [[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || { echo "uniaxial_study.sh: -j wants a positive count (got '$JOBS')" >&2; exit 2; }
+FIG="${FIG:-$OUT/figures}"
 BIN="${POLYFLOE_BIN:-build/polyfloe}"
 [ -x "$BIN" ] || bash scripts/build.sh
 export BIN OUT
