@@ -46,55 +46,54 @@ RULES = [
 ]
 
 
-def commands_in_markdown(path):
-    out = []
-    lines = open(os.path.join(ROOT, path), encoding="utf-8").read().split("\n")
-    in_block, lang, pending, start = False, "", "", 0
-    for n, line in enumerate(lines, 1):
-        fence = re.match(r"^\s*```(\w*)", line)
-        if fence:
-            in_block, lang = (not in_block), fence.group(1)
-            continue
-        if not in_block:
-            continue
+def logical_commands(where, numbered_lines):
+    """(where:line, command) from (line number, text or None) pairs, None where no command can start: a command
+    starts at a line marked as a possible start and goes on over continuation lines (a trailing backslash) and to the
+    `done` of a for-loop."""
+    out, pending, start = [], "", 0
+    for n, text, can_start in numbered_lines:
         if not pending:
-            if not (COMMAND_START.match(line) or (lang == "sh" and line.strip() and not line.startswith(" "))):
+            if not can_start:
                 continue
             start = n
-        pending += (" " if pending else "") + strip_comment(line).rstrip()
+        pending += (" " if pending else "") + strip_comment(text).rstrip()
         if pending.endswith("\\"):
             pending = pending[:-1].rstrip()
             continue
         if re.match(r"^for ", pending) and not re.search(r"\bdone$", pending):
             pending += ";" if not pending.endswith(("do", ";")) else ""
             continue
-        out.append((f"{path}:{start}", pending.strip()))
+        out.append((f"{where}:{start}", pending.strip()))
         pending = ""
     return out
 
 
+def commands_in_markdown(path):
+    """Commands in fenced blocks: in ```sh blocks every line that starts at the margin, elsewhere lines that start
+    with a command."""
+    lines, in_block, lang = [], False, ""
+    for n, line in enumerate(open(os.path.join(ROOT, path), encoding="utf-8").read().split("\n"), 1):
+        fence = re.match(r"^\s*```(\w*)", line)
+        if fence:
+            in_block, lang = (not in_block), fence.group(1)
+        elif in_block:
+            starts = bool(COMMAND_START.match(line) or (lang == "sh" and line.strip() and not line.startswith(" ")))
+            lines.append((n, line, starts))
+    return logical_commands(path, lines)
+
+
 def commands_in_scene_comments():
+    """Commands in the scene files' comments: lines `#   polyfloe ...` or `#   bash ...`."""
     out = []
     for folder in ("dem/scenes", "of_cases"):
         for base, _, files in sorted(os.walk(os.path.join(ROOT, folder))):
-            for f in sorted(files):
-                if not f.endswith(".yaml"):
-                    continue
-                rel = os.path.relpath(os.path.join(base, f), ROOT)
-                pending, start = "", 0
+            for f in sorted(x for x in files if x.endswith(".yaml")):
+                lines = []
                 for n, line in enumerate(open(os.path.join(base, f), encoding="utf-8"), 1):
                     m = re.match(r"^#\s+(.*)$", line.rstrip("\n"))
                     text = m.group(1) if m else ""
-                    if not pending:
-                        if not re.match(r"^(polyfloe |bash )", text):
-                            continue
-                        start = n
-                    pending += (" " if pending else "") + strip_comment(text).rstrip()
-                    if pending.endswith("\\"):
-                        pending = pending[:-1].rstrip()
-                        continue
-                    out.append((f"{rel}:{start}", pending.strip()))
-                    pending = ""
+                    lines.append((n, text, bool(re.match(r"^(polyfloe |bash )", text))))
+                out += logical_commands(os.path.relpath(os.path.join(base, f), ROOT), lines)
     return out
 
 
