@@ -21,6 +21,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+std::string slurp_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 using Result = polyfloe::tsupport::CommandResult;
 using polyfloe::tsupport::run_polyfloe;
 
@@ -122,6 +129,36 @@ TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
   // Eq. 6-7 at alpha = 15 deg, e = 0.5: v'/v0 = 1/7, w' r / v0 = 9/7
   EXPECT_NEAR(v, 1.0 / 7.0, 0.01);
   EXPECT_NEAR(w, 9.0 / 7.0, 0.01);
+  // The summary says when the impact came; the last frame is the end state (t = run.duration exactly, the last
+  // step shortened as in planar runs), the frames before it at the first step at or after each 2 ms.
+  EXPECT_NE(r.output.find("Contacts: the first at t = 0.00"), std::string::npos) << r.output;
+  std::ifstream pvd(out / "bodies.pvd");
+  const std::string series((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  EXPECT_NE(series.find("timestep=\"0.1\" group=\"\" part=\"0\" file=\"bodies/bodies_000050.vtp\""),
+            std::string::npos)
+      << series;
+  EXPECT_EQ(series.find("bodies_000051"), std::string::npos) << series;
+  // The cube lifted clear of the plate: no impact, and the summary says so instead of a silent exit 0.
+  const Result none = run_polyfloe("run " + scene + " -o " + out.string() + " --set spatial.bodies.1.position=[0,0,5]");
+  ASSERT_EQ(none.code, 0) << none.output;
+  EXPECT_NE(none.output.find("No contact during the run"), std::string::npos) << none.output;
+  fs::remove_all(out);
+}
+
+// plot_frames refuses a time the run has no frame at (it used to show the nearest frame under the asked time).
+TEST(Cli, PlotFramesRefusesATimeTheRunDidNotReach) {
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_plot_frames");
+  fs::remove_all(out);
+  ASSERT_EQ(run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2").code, 0);
+  const std::string plot = "/usr/bin/python3 " + std::string(POLYFLOE_SOURCE_DIR) + "/postprocess/plot_frames.py " +
+                           (out / "results.h5").string() + " -t 0 ";
+  const std::string log = (out / "plot.log").string();
+  EXPECT_EQ(std::system((plot + "0.2 -o " + (out / "ok.png").string() + " > " + log + " 2>&1").c_str()), 0)
+      << slurp_file(log);
+  EXPECT_NE(std::system((plot + "150 -o " + (out / "no.png").string() + " > " + log + " 2>&1").c_str()), 0);
+  EXPECT_NE(slurp_file(log).find("has no frame at t = 150 s: its frames span 0 to 0.2 s"), std::string::npos)
+      << slurp_file(log);
+  EXPECT_FALSE(fs::exists(out / "no.png"));
   fs::remove_all(out);
 }
 
@@ -181,13 +218,6 @@ TEST(Cli, TinyOutputIntervalFinishes) {
                             " --set output.interval=1e-300 --set run.duration=0.01");
   EXPECT_EQ(r.code, 0) << r.output;
   fs::remove_all(out);
-}
-
-std::string slurp_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // The output folder contract (docs/user-guide.md, "The output folder"): a rerun removes what the previous run's
