@@ -50,6 +50,7 @@ struct Mesh {
   vtkSmartPointer<vtkStaticCellLocator> locator;
   int max_cell_size = 0;
   double min_horizontal = 0.0;  // [m]
+  bool one_layer = false;       // every cell spans the mesh's whole depth (a 2-D, depth-averaged case)
 };
 
 }  // namespace
@@ -65,6 +66,7 @@ MeshSnapshot::MeshSnapshot(MeshSnapshot&&) noexcept = default;
 MeshSnapshot& MeshSnapshot::operator=(MeshSnapshot&&) noexcept = default;
 
 double MeshSnapshot::min_cell_size() const { return impl_ ? impl_->mesh->min_horizontal : 0.0; }
+bool MeshSnapshot::depth_averaged() const { return impl_ && impl_->mesh->one_layer; }
 
 std::size_t MeshSnapshot::cells() const {
   return impl_ ? static_cast<std::size_t>(impl_->mesh->grid->GetNumberOfCells()) : 0;
@@ -89,8 +91,10 @@ bool MeshSnapshot::sample(const Eigen::Vector3d& p, Eigen::Vector3d& u) const {
   return true;
 }
 
-std::vector<double> case_times(const fs::path& dir) {
-  check_case(dir);
+namespace {
+
+// The time directories of `dir` (a case or one of its processor*/ folders) that hold U, increasing.
+std::vector<double> times_with_u(const fs::path& dir) {
   std::vector<double> times;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
@@ -102,6 +106,26 @@ std::vector<double> case_times(const fs::path& dir) {
     if (fs::is_regular_file(e.path() / "U", ec) || fs::is_regular_file(e.path() / "U.gz", ec)) times.push_back(t);
   }
   std::sort(times.begin(), times.end());
+  return times;
+}
+
+}  // namespace
+
+std::vector<double> case_times(const fs::path& dir) {
+  check_case(dir);
+  const std::vector<double> times = times_with_u(dir);
+  // A decomposed case (decomposePar, then a solver run with -parallel) writes its solution into processor*/ only:
+  // the case's own time directories then hold the initial condition alone. Reading them would import t = 0 as if
+  // it were the flow; the solution must be reconstructed first.
+  std::error_code ec;
+  if (fs::is_directory(dir / "processor0", ec)) {
+    const std::vector<double> decomposed = times_with_u(dir / "processor0");
+    if (!decomposed.empty() && (times.empty() || decomposed.back() > times.back()))
+      fail(dir, "a decomposed case: its solution (t = " + times_text(decomposed) + " in processor*/) is not "
+                "reconstructed, and " + (times.empty() ? std::string("the case itself holds no U") :
+                "the case's own U is only at t = " + times_text(times) + " (the initial condition)") +
+                "; reconstruct it first with OpenFOAM's `reconstructPar -case " + dir.string() + "`, then import");
+  }
   if (times.empty()) fail(dir, "no time directory holds a velocity field U");
   return times;
 }
@@ -181,10 +205,15 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
       mesh->locator->BuildLocator();
       mesh->max_cell_size = mesh->grid->GetMaxCellSize();
       mesh->min_horizontal = std::numeric_limits<double>::infinity();
+      double mb[6];
+      mesh->grid->GetBounds(mb);
+      const double depth = mb[5] - mb[4];
+      mesh->one_layer = true;
       for (vtkIdType c = 0; c < mesh->grid->GetNumberOfCells(); ++c) {
         double cb[6];
         mesh->grid->GetCellBounds(c, cb);
         mesh->min_horizontal = std::min({mesh->min_horizontal, cb[1] - cb[0], cb[3] - cb[2]});
+        if (cb[5] - cb[4] < depth * (1.0 - 1e-6)) mesh->one_layer = false;
       }
     }
     MeshSnapshot s;

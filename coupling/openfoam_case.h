@@ -29,7 +29,8 @@ struct TimeSelection {
   std::vector<double> times;
 };
 
-// The case's time directories that hold U, increasing [s]; throws CouplingError for a folder that is not a case.
+// The case's time directories that hold U, increasing [s]; throws CouplingError for a folder that is not a case,
+// and for a decomposed case whose solution is only in processor*/ (naming reconstructPar as the fix).
 std::vector<double> case_times(const std::filesystem::path& case_dir);
 // True when the case's fvSchemes says ddtSchemes default steadyState (simpleFoam and friends).
 bool case_is_steady(const std::filesystem::path& case_dir);
@@ -49,6 +50,9 @@ class MeshSnapshot {
   std::size_t cells() const;
   // The smallest horizontal extent (x or y) of a cell's bounding box [m]: the finest detail the mesh resolves.
   double min_cell_size() const;
+  // True when every cell spans the mesh's whole depth: a 2-D case (one cell through the depth, OpenFOAM's `empty`
+  // front and back), whose velocity is the same at every depth.
+  bool depth_averaged() const;
   // U at p [m/s] into u; false where p is farther than the locator tolerance (1e-9 of the mesh diagonal) from
   // every cell. Safe to call from several threads at once (each thread keeps its own VTK cell and weights).
   bool sample(const Eigen::Vector3d& p, Eigen::Vector3d& u) const;

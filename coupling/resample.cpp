@@ -46,13 +46,29 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
   forcing::GridData& g = f.grid;
   g.x = nodes(b[0], b[2], cell);
   g.y = nodes(b[1], b[3], cell);
-  // Levels clamped into the mesh and unique; each is sampled a hair inside the mesh's top and bottom faces, so the
-  // locator finds a cell for a level on the sea surface.
+  // Levels are heights below the water surface (the mesh's top unless given): level L is sampled at surface + L,
+  // a hair inside the mesh's top and bottom faces so that the locator finds a cell on the surface itself. A level
+  // outside the mesh's depth is refused: clamped, it would take the seabed's (or the lid's) velocity for the
+  // surface's. A 2-D case has one velocity through its depth: any level samples it.
   const double zlo = mb[4], zhi = mb[5], inset = 1e-7 * std::max(1.0, zhi - zlo);
-  for (const double z : spec.z) g.z.push_back(std::clamp(z, zlo, zhi));
+  const double surface = spec.surface.value_or(zhi);
+  const bool flat = snapshots.front().depth_averaged();
+  const double tol = 1e-9 * std::max(1.0, std::abs(zhi) + std::abs(zlo));
+  if (!std::isfinite(surface)) throw CouplingError(source + ": the water surface must be a finite z [m]");
+  for (const double z : spec.z) {
+    if (!flat && (surface + z < zlo - tol || surface + z > zhi + tol)) {
+      std::ostringstream why;
+      why << source << ": level " << z << " m lies at z = " << surface + z << " m, outside the mesh's depth [" << zlo
+          << ", " << zhi << "] m (the water surface taken at z = " << surface
+          << (spec.surface ? " m, --surface" : " m, the top of the mesh")
+          << "); give levels from " << zlo - surface << " to " << zhi - surface << " m (--z), or the surface (--surface Z)";
+      throw CouplingError(why.str());
+    }
+    g.z.push_back(z);
+  }
   std::sort(g.z.begin(), g.z.end());
   g.z.erase(std::unique(g.z.begin(), g.z.end(), [](double a, double c) { return std::abs(a - c) < 1e-9; }), g.z.end());
-  const auto probe_z = [&](double z) { return std::clamp(z, zlo + inset, zhi - inset); };
+  const auto probe_z = [&](double z) { return std::clamp(surface + z, zlo + inset, zhi - inset); };
   for (const MeshSnapshot& s : snapshots) g.t.push_back(steady && snapshots.size() == 1 ? 0.0 : s.time());
 
   const std::size_t per = g.nodes_per_snapshot();

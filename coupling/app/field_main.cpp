@@ -40,12 +40,14 @@ Import options:
   --cell M|auto           grid spacing in x and y [m], > 0 (default auto: the mesh's finest horizontal
                           cell, which resolves what the mesh resolves; see docs/performance.md)
   --bounds X0,Y0,X1,Y1    the grid's extent [m] (default: the mesh's)
-  --z Z1,Z2,...           levels [m], heights (<= 0 in the water) spanning the floe drafts
-                          (default -2,-1,-0.5,0); a 2-D case (one cell through the depth) keeps one
+  --z Z1,Z2,...           levels [m], heights relative to the water surface (<= 0 in the water) spanning
+                          the floe drafts (default -2,-1,-0.5,0); each must lie in the mesh (never clamped);
+                          a 2-D case (one cell through the depth) keeps one
+  --surface Z             the water surface's height in the case [m] (default: the top of the mesh)
   --times WHICH           auto (default: the latest time of a steady case, every time of a transient one),
                           all, latest, or a list T1,T2,... [s] of time directories
   --no-vtk                write no .pvd/.vtr series
-Compare options:
+Compare options (also --times and --surface, as the import was made):
   --points N              random points per snapshot and level (default 20000)
   --seed S                random seed (default 1)
 
@@ -116,6 +118,10 @@ Args parse(int argc, char** argv) {
       a.grid.bounds = Eigen::Vector4d(b[0], b[1], b[2], b[3]);
     } else if (o == "--z") {
       a.grid.z = numbers(o, value());
+    } else if (o == "--surface") {
+      const std::vector<double> z = numbers(o, value());
+      if (z.size() != 1) throw UsageError("--surface: expected one height [m]");
+      a.grid.surface = z[0];
     } else if (o == "--times") {
       const std::string w = value();
       using K = coupling::TimeSelection::Kind;
@@ -198,10 +204,18 @@ int import(const Args& a) {
   pvd.replace_extension(".pvd");
   if (a.vtk) frames = coupling::write_field_vtk(pvd, f);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto& b = snaps.front().bounds();
   std::cout << "Imported " << case_dir.string() << " (" << snaps.front().cells() << " cells, the finest "
             << snaps.front().min_cell_size() << " m across, "
             << (steady ? "steady" : "transient") << ", " << snaps.size() << " time(s)) into " << a.output.string()
-            << " in " << wall << " s:\n";
+            << " in " << wall << " s:\n  mesh: x " << b[0] << " to " << b[1] << " m, y " << b[2] << " to " << b[3]
+            << " m, z " << b[4] << " to " << b[5] << " m"
+            << (snaps.front().depth_averaged() ? " (one cell through the depth: a 2-D case)" : "")
+            << "; water surface at z = " << a.grid.surface.value_or(b[5])
+            << (a.grid.surface ? " m (--surface)\n" : " m (the top of the mesh; --surface to change)\n");
+  if (!steady && snaps.size() == 1 && snaps.front().time() == 0.0)
+    std::cout << "  note: the only velocity imported is t = 0, a transient case's initial condition, not a "
+                 "solution: run the case first\n";
   describe(f);
   if (frames) std::cout << "  ParaView: " << pvd.string() << " (" << frames << " frame(s))\n";
   return 0;
@@ -229,6 +243,9 @@ int compare(const Args& a) {
   const forcing::GriddedField gridded(std::make_shared<const forcing::GridData>(g), opt);
   std::mt19937_64 rng(a.seed);
   std::uniform_real_distribution<double> ux(g.x.front(), g.x.back()), uy(g.y.front(), g.y.back());
+  // The file's levels are heights below the water surface: the mesh is probed at surface + z, inside the mesh.
+  const auto& mb = snaps->front().bounds();
+  const double surface = a.grid.surface.value_or(mb[5]), inset = 1e-7 * std::max(1.0, mb[5] - mb[4]);
   std::cout << "Gridding error of " << file.string() << " against " << case_dir.string() << " (" << a.points
             << " random points in the water per snapshot and level):\n";
   double worst = 0.0;
@@ -240,7 +257,7 @@ int compare(const Args& a) {
       for (long tries = 0; n < a.points && tries < 50 * a.points; ++tries) {
         const forcing::Vec3 p{ux(rng), uy(rng), z};
         Eigen::Vector3d ref3;
-        if (!(*snaps)[it].sample(p, ref3)) continue;
+        if (!(*snaps)[it].sample({p.x(), p.y(), std::clamp(surface + z, mb[4] + inset, mb[5] - inset)}, ref3)) continue;
         forcing::Vec2 grid_u;
         try {
           grid_u = gridded.at(p, t_file);

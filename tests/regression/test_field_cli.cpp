@@ -1,6 +1,7 @@
 // `polyfloe field` (coupling/app/field_main.cpp, run through polyfloe's git-style dispatch): bad arguments and
 // cases that are not OpenFOAM cases give exit code 2 with the option or folder named and no output file; `info`
-// describes a field file. (The import itself is tested end to end in tests/validation/test_strait_openfoam.cpp.)
+// describes a field file; a decomposed case is refused and a 3-D case's levels are heights below its surface. (The
+// import itself is tested end to end in tests/validation/test_strait_openfoam.cpp.)
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -81,6 +82,89 @@ TEST_F(FieldCli, InfoDescribesAFieldFileAndRefusesOthers) {
   const Result help = field("--help");
   EXPECT_EQ(help.code, 0);
   EXPECT_NE(help.output.find("polyfloe field import CASE -o FILE"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+// A decomposed case whose solution was never reconstructed: the case's own 0/U is the initial condition. Importing
+// it used to give that as the flow, with exit 0; now it is refused, naming reconstructPar.
+TEST_F(FieldCli, ADecomposedCaseIsRefusedNamingReconstructPar) {
+  const fs::path c = dir_ / "case";
+  for (const char* d : {"system", "constant/polyMesh", "0", "processor0/10", "processor1/10"})
+    fs::create_directories(c / d);
+  std::ofstream(c / "system" / "controlDict") << "application pisoFoam;\n";
+  for (const char* u : {"0/U", "processor0/10/U", "processor1/10/U"}) std::ofstream(c / u) << "// U\n";
+  expect_refused("import " + c.string() + " -o " + (dir_ / "out.h5").string(),
+                 "a decomposed case: its solution (t = 10 in processor*/) is not reconstructed, and the case's own U "
+                 "is only at t = 0 (the initial condition); reconstruct it first with OpenFOAM's `reconstructPar");
+}
+
+// Writes a 3-D box case (blockMesh): x, y in [0, 100] m, z in [0, 10] m (the seabed at 0, the surface at 10), 4 x 4
+// x 5 cells, and U = (z_c / 10 m) (1, 0, 0) m/s at the cell centres z_c = 1, 3, 5, 7, 9 m. Returns false without
+// OpenFOAM's blockMesh.
+bool write_box_case(const fs::path& c) {
+  if (std::system("command -v blockMesh > /dev/null 2>&1") != 0) return false;
+  for (const char* d : {"system", "constant", "0"}) fs::create_directories(c / d);
+  const std::string header = "FoamFile { version 2.0; format ascii; class dictionary; object x; }\n";
+  std::ofstream(c / "system" / "controlDict") << header << "application simpleFoam;\nstartFrom startTime;\n"
+      "startTime 0;\nstopAt endTime;\nendTime 1;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 1;\n";
+  std::ofstream(c / "system" / "fvSchemes") << header << "ddtSchemes { default steadyState; }\n";
+  std::ofstream(c / "system" / "fvSolution") << header;
+  std::ofstream(c / "system" / "blockMeshDict")
+      << header << "convertToMeters 1;\nvertices ((0 0 0) (100 0 0) (100 100 0) (0 100 0) (0 0 10) (100 0 10) "
+                   "(100 100 10) (0 100 10));\nblocks (hex (0 1 2 3 4 5 6 7) (4 4 5) simpleGrading (1 1 1));\n"
+                   "edges ();\nboundary ();\ndefaultPatch { name walls; type patch; }\n";
+  std::ofstream u(c / "0" / "U");
+  u << "FoamFile { version 2.0; format ascii; class volVectorField; object U; }\ndimensions [0 1 -1 0 0 0 0];\n"
+    << "internalField nonuniform List<vector> 80 (\n";
+  for (int k = 0; k < 5; ++k)
+    for (int n = 0; n < 16; ++n) u << "(" << (2 * k + 1) / 10.0 << " 0 0)\n";
+  u << ");\nboundaryField { walls { type zeroGradient; } }\n";
+  u.close();
+  const std::string mesh = "cd " + c.string() + " && WM_PROJECT_DIR=/usr/share/openfoam FOAM_ETC=/usr/share/openfoam/etc "
+                           "blockMesh > log.blockMesh 2>&1";
+  return std::system(mesh.c_str()) == 0;
+}
+
+// The interior value of the field file at level index iz, node (ix, iy) of the first snapshot (h5py).
+double file_u(const fs::path& file, int iz, int ix, int iy) {
+  const std::string py = "/usr/bin/python3 -c \"import h5py; f = h5py.File('" + file.string() +
+                         "', 'r'); print('%.9f' % f['U'][0, " + std::to_string(iz) + ", " + std::to_string(iy) + ", " +
+                         std::to_string(ix) + ", 0])\"";
+  FILE* p = popen(py.c_str(), "r");
+  double v = -1.0;
+  if (p) {
+    if (std::fscanf(p, "%lf", &v) != 1) v = -1.0;
+    pclose(p);
+  }
+  return v;
+}
+
+// A 3-D case whose water surface is not at z = 0 (the seabed is): levels are heights below the surface (the mesh's
+// top unless --surface says otherwise), so -5 m is mid-depth. They used to be clamped into the mesh at z = 0, the
+// seabed: a wrong current with exit 0. A level outside the mesh's depth is refused, naming --z and --surface.
+TEST_F(FieldCli, LevelsAreHeightsBelowTheSurfaceOfA3dCaseAndNeverClamped) {
+  const fs::path c = dir_ / "box";
+  if (!write_box_case(c)) GTEST_SKIP() << "OpenFOAM's blockMesh is not installed";
+  const fs::path out = dir_ / "out.h5";
+  Result r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --z -5,-3 --no-vtk");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("z 0 to 10 m; water surface at z = 10 m (the top of the mesh"), std::string::npos)
+      << r.output;
+  // Interior node (x = y = 50 m): U at z = 5 m and 7 m, linear between the cell-centre values 0.1 z (VTK's reader
+  // holds the values in single precision: 1e-6).
+  EXPECT_NEAR(file_u(out, 0, 2, 2), 0.5, 1e-6);
+  EXPECT_NEAR(file_u(out, 1, 2, 2), 0.7, 1e-6);
+  fs::remove(out);
+  r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --z -1 --surface 5 --no-vtk");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NEAR(file_u(out, 0, 2, 2), 0.4, 1e-6);  // z = 5 - 1 = 4 m
+  fs::remove(out);
+  expect_refused("import " + c.string() + " -o " + out.string() + " --cell 25 --z -12,0",
+                 "level -12 m lies at z = -2 m, outside the mesh's depth [0, 10] m (the water surface taken at z = 10 "
+                 "m, the top of the mesh); give levels from -10 to 0 m (--z), or the surface (--surface Z)");
 }
 
 }  // namespace
