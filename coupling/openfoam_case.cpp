@@ -1,5 +1,8 @@
 #include "openfoam_case.h"
 
+#include <vtkLogger.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -43,6 +46,51 @@ std::string times_text(const std::vector<double>& t) {
   for (std::size_t i = 0; i < t.size(); ++i) os << (i ? ", " : "") << t[i];
   return os.str();
 }
+
+// VTK's messages while a case is read, kept instead of printed (VTK prints them with colour codes and source lines,
+// from the reader's internal objects too): the first error goes into our message, as one clear line.
+class CapturingWindow : public vtkOutputWindow {
+ public:
+  static CapturingWindow* New();
+  vtkTypeMacro(CapturingWindow, vtkOutputWindow);
+  void DisplayText(const char* text) override {
+    std::string m = text ? text : "";
+    for (std::size_t at = m.find('\x1b'); at != std::string::npos; at = m.find('\x1b')) {  // colour codes
+      const std::size_t end = m.find('m', at);
+      m.erase(at, end == std::string::npos ? std::string::npos : end - at + 1);
+    }
+    if (const std::size_t cut = m.rfind("): "); cut != std::string::npos) m.erase(0, cut + 3);  // "vtkX (0x..): "
+    std::replace(m.begin(), m.end(), '\n', ' ');
+    while (!m.empty() && m.back() == ' ') m.pop_back();
+    if (!m.empty()) messages.push_back(m);
+  }
+  std::vector<std::string> messages;
+};
+vtkStandardNewMacro(CapturingWindow);
+
+class VtkMessages {
+ public:
+  // VTK 9 also logs errors to stderr itself (vtkLogger): off while the case is read.
+  VtkMessages() : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    vtkOutputWindow::SetInstance(window_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~VtkMessages() {
+    vtkOutputWindow::SetInstance(previous_);
+    vtkLogger::SetStderrVerbosity(verbosity_);
+  }
+  VtkMessages(const VtkMessages&) = delete;
+  VtkMessages& operator=(const VtkMessages&) = delete;
+  // "; VTK's OpenFOAM reader said: ..." with the first message, or nothing.
+  std::string said() const {
+    return window_->messages.empty() ? std::string() : "; VTK's OpenFOAM reader said: " + window_->messages.front();
+  }
+
+ private:
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkLogger::Verbosity verbosity_;
+  vtkNew<CapturingWindow> window_;
+};
 
 // The static mesh and its locator, shared by the snapshots of a case (OpenFOAM's constant/polyMesh).
 struct Mesh {
@@ -173,6 +221,7 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
   }
 
   vtkNew<vtkOpenFOAMReader> reader;
+  const VtkMessages vtk_said;
   reader->SetFileName((dir / "system" / "controlDict").c_str());
   reader->SkipZeroTimeOff();
   reader->UpdateInformation();
@@ -191,10 +240,17 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
     auto* blocks = vtkMultiBlockDataSet::SafeDownCast(reader->GetOutput());
     vtkUnstructuredGrid* grid =
         blocks && blocks->GetNumberOfBlocks() > 0 ? vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(0)) : nullptr;
-    if (!grid || grid->GetNumberOfCells() == 0) fail(dir, "VTK's OpenFOAM reader found no internal mesh");
+    if (!grid || grid->GetNumberOfCells() == 0) fail(dir, "VTK's OpenFOAM reader found no internal mesh" + vtk_said.said());
     vtkDataArray* u = grid->GetPointData()->GetArray("U");
-    if (!u || u->GetNumberOfComponents() != 3)
-      fail(dir, "no velocity U at time " + times_text({t}) + " (the reader could not read " + times_text({t}) + "/U)");
+    if (!u || u->GetNumberOfComponents() != 3) {
+      std::string why = "no velocity U at time " + times_text({t}) + " (the reader could not read " + times_text({t}) +
+                        "/U" + vtk_said.said() + ")";
+      if (why.find("include") != std::string::npos)
+        why += "; VTK's reader cannot expand #include / #includeEtc: expand the file with OpenFOAM's "
+               "`foamDictionary -expand`" + std::string(t == 0.0 ? ", or skip the initial condition (--times latest, "
+               "or the solution times T1,T2,...)" : "");
+      fail(dir, why);
+    }
     if (!mesh || mesh->grid->GetNumberOfPoints() != grid->GetNumberOfPoints() ||
         mesh->grid->GetNumberOfCells() != grid->GetNumberOfCells()) {
       mesh = std::make_shared<Mesh>();

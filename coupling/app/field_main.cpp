@@ -30,7 +30,8 @@ const char* kUsage = R"(polyfloe field: ocean currents from OpenFOAM for PolyFlo
 
 Usage:
   polyfloe field import CASE -o FILE [options]   resample CASE's velocity U onto a grid: an ocean field file
-                                                 (HDF5, FILE) and FILE's .pvd series for ParaView
+                                                 (HDF5, FILE.h5) and FILE's .pvd series for ParaView; CASE is
+                                                 the case folder (or its case.foam / system/controlDict)
   polyfloe field info FILE                       what a field file holds
   polyfloe field compare CASE FILE [options]     the gridding error: FILE's interpolation against probing
                                                  CASE's mesh directly, at random points in the water
@@ -158,6 +159,27 @@ Args parse(int argc, char** argv) {
     throw UsageError(a.command + " takes " + (want == 2 ? "CASE FILE" : a.command == "info" ? "FILE" : "CASE") +
                      ", got " + std::to_string(a.positional.size()) + " argument(s)");
   if (a.command == "import" && a.output.empty()) throw UsageError("import needs -o FILE");
+  if (a.command == "import") {
+    // Checked before the (long) import: the file is HDF5 (.h5), its .pvd and .vtr frames go beside it.
+    const std::string ext = a.output.extension().string();
+    if (ext != ".h5" && ext != ".hdf5")
+      throw UsageError("-o " + a.output.string() + ": a field file is HDF5, named FILE.h5 (its ParaView series "
+                       "FILE.pvd and FILE/ go beside it), got the extension '" + ext + "'");
+    std::error_code ec;
+    const fs::path parent = fs::absolute(a.output, ec).parent_path();
+    if (!fs::is_directory(parent, ec))
+      throw UsageError("-o " + a.output.string() + ": the folder " + parent.string() + " does not exist");
+    if (fs::is_directory(a.output, ec)) throw UsageError("-o " + a.output.string() + ": a folder, not a file name");
+  }
+  // The case may be given as its folder, or as a file in it that names it for ParaView (CASE/case.foam, any
+  // *.foam) or its system/controlDict.
+  if (a.command != "info" && !a.positional.empty()) {
+    fs::path c = a.positional[0];
+    std::error_code ec;
+    if (c.extension() == ".foam" && !fs::is_directory(c, ec)) c = c.parent_path();
+    else if (c.filename() == "controlDict" && c.parent_path().filename() == "system") c = c.parent_path().parent_path();
+    a.positional[0] = c.empty() ? "." : c.string();
+  }
   return a;
 }
 

@@ -167,4 +167,35 @@ TEST_F(FieldCli, LevelsAreHeightsBelowTheSurfaceOfA3dCaseAndNeverClamped) {
                  "m, the top of the mesh); give levels from -10 to 0 m (--z), or the surface (--surface Z)");
 }
 
+// The case named by its case.foam (as ParaView opens it); output names checked before the import; VTK's own error
+// lines (colour codes, source lines) turned into one line of the message, with the fix for #includeEtc.
+TEST_F(FieldCli, CaseFoamNamesTheCaseAndVtkErrorsBecomeOneClearLine) {
+  const fs::path c = dir_ / "box";
+  if (!write_box_case(c)) GTEST_SKIP() << "OpenFOAM's blockMesh is not installed";
+  std::ofstream(c / "case.foam") << "";
+  const fs::path out = dir_ / "out.h5";
+  Result r = field("import " + (c / "case.foam").string() + " -o " + out.string() + " --cell 25 --no-vtk");
+  EXPECT_EQ(r.code, 0) << r.output;
+  fs::remove(out);
+  expect_refused("import " + c.string() + " -o " + (dir_ / "out").string(), "a field file is HDF5, named FILE.h5");
+  expect_refused("import " + c.string() + " -o " + (dir_ / "out.vtr").string(), "got the extension '.vtr'");
+  expect_refused("import " + c.string() + " -o " + (dir_ / "no" / "out.h5").string(), "does not exist");
+  // 0/U as OpenFOAM's tutorials write it: #includeEtc in its boundaryField, which VTK's reader cannot expand.
+  std::string text;
+  {
+    std::ifstream in(c / "0" / "U");
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  text.replace(text.find("boundaryField {"), 15, "boundaryField {\n#includeEtc \"caseDicts/setConstraintTypes\"\n");
+  std::ofstream(c / "0" / "U") << text;
+  r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --no-vtk");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("VTK's OpenFOAM reader said: Error reading line"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Unsupported directive includeEtc"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("foamDictionary -expand"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("\x1b"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("ERR|"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace
