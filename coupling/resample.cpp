@@ -42,6 +42,23 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
   if ((b[2] - b[0]) / cell > 1e5 || (b[3] - b[1]) / cell > 1e5)
     throw CouplingError(source + ": more than 100,000 nodes along an axis; choose a larger cell");
 
+  // The node count (and so the memory and the file) estimated before anything is allocated: a graded mesh's finest
+  // cell (the automatic spacing) or a spacing in the wrong unit asks for billions of nodes.
+  {
+    const double nx = std::max(2.0, std::ceil((b[2] - b[0]) / cell - 1e-9) + 1.0);
+    const double ny = std::max(2.0, std::ceil((b[3] - b[1]) / cell - 1e-9) + 1.0);
+    const double total = nx * ny * static_cast<double>(spec.z.size()) * static_cast<double>(snapshots.size());
+    if (!(total <= spec.max_nodes)) {
+      std::ostringstream why;
+      why << source << ": a grid of " << nx << " x " << ny << " nodes at " << cell << " m spacing"
+          << (spec.cell > 0.0 ? "" : " (the mesh's finest cell)") << ", x " << spec.z.size() << " level(s) x "
+          << snapshots.size() << " time(s) is " << total << " nodes, about " << std::ceil(total * 48.0 / 1048576.0)
+          << " MiB in memory and " << std::ceil(total * 24.0 / 1048576.0) << " MiB of velocities in the file (at most "
+          << spec.max_nodes << " nodes): choose a larger --cell (" << cell * std::sqrt(total / spec.max_nodes)
+          << " m fits), smaller --bounds, fewer --z levels or --times, or allow it with --max-nodes N";
+      throw CouplingError(why.str());
+    }
+  }
   io::FieldFile f;
   forcing::GridData& g = f.grid;
   g.x = nodes(b[0], b[2], cell);

@@ -17,6 +17,7 @@ struct GridSpec {
   std::vector<double> z{-2.0, -1.0, -0.5, 0.0};  // levels [m], heights relative to the water surface (<= 0 in the
                                                  // water), spanning floe drafts; each must lie in the mesh
   std::optional<double> surface;                 // the water surface's z in the case [m]; default: the mesh's top
+  double max_nodes = 5e7;                        // x * y * z * times nodes allowed [-] (memory, file size)
 };
 
 // Empty when `g` is usable, else what is wrong ("cell must be > 0 m").

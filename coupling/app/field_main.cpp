@@ -45,6 +45,8 @@ Import options:
                           the floe drafts (default -2,-1,-0.5,0); each must lie in the mesh (never clamped);
                           a 2-D case (one cell through the depth) keeps one
   --surface Z             the water surface's height in the case [m] (default: the top of the mesh)
+  --max-nodes N           the most grid nodes (x * y * levels * times) to allocate (default 5e7: some 2.4 GB
+                          in memory); a larger grid is refused with its size before anything is allocated
   --times WHICH           auto (default: the latest time of a steady case, every time of a transient one),
                           all, latest, or a list T1,T2,... [s] of time directories
   --no-vtk                write no .pvd/.vtr series
@@ -119,6 +121,10 @@ Args parse(int argc, char** argv) {
       a.grid.bounds = Eigen::Vector4d(b[0], b[1], b[2], b[3]);
     } else if (o == "--z") {
       a.grid.z = numbers(o, value());
+    } else if (o == "--max-nodes") {
+      const std::vector<double> n = numbers(o, value());
+      if (n.size() != 1 || !(n[0] >= 1.0) || n[0] > 1e10) throw UsageError("--max-nodes: expected a count in [1, 1e10]");
+      a.grid.max_nodes = n[0];
     } else if (o == "--surface") {
       const std::vector<double> z = numbers(o, value());
       if (z.size() != 1) throw UsageError("--surface: expected one height [m]");

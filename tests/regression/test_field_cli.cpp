@@ -162,6 +162,9 @@ TEST_F(FieldCli, LevelsAreHeightsBelowTheSurfaceOfA3dCaseAndNeverClamped) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NEAR(file_u(out, 0, 2, 2), 0.4, 1e-6);  // z = 5 - 1 = 4 m
   fs::remove(out);
+  // A spacing that would need 4e8 nodes is refused with the grid's size before anything is allocated.
+  expect_refused("import " + c.string() + " -o " + out.string() + " --cell 0.01",
+                 "a grid of 10001 x 10001 nodes at 0.01 m spacing, x 4 level(s) x 1 time(s) is 4.0008e+08 nodes");
   expect_refused("import " + c.string() + " -o " + out.string() + " --cell 25 --z -12,0",
                  "level -12 m lies at z = -2 m, outside the mesh's depth [0, 10] m (the water surface taken at z = 10 "
                  "m, the top of the mesh); give levels from -10 to 0 m (--z), or the surface (--surface Z)");
