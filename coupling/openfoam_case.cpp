@@ -218,6 +218,17 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
       std::sort(chosen.begin(), chosen.end());
       chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
       break;
+    case Kind::range: {
+      if (which.times.size() != 2) fail(dir, "a time range needs its two ends");
+      const double lo = which.times[0], hi = which.times[1];  // an open end is infinite
+      for (const double a : available)
+        if (a >= lo - 1e-6 * std::max(1.0, std::abs(a)) && a <= hi + 1e-6 * std::max(1.0, std::abs(a)))
+          chosen.push_back(a);
+      if (chosen.empty())
+        fail(dir, "no time directory with U in " + times_text({lo}) + ":" + times_text({hi}) + " (the case has " +
+                      times_text(available) + ")");
+      break;
+    }
   }
 
   vtkNew<vtkOpenFOAMReader> reader;

@@ -24,6 +24,7 @@ struct TimeSelection {
     all,        // every time directory with U, 0 included
     latest,     // the last one
     listed,     // `times`, each matched to a time directory within 1e-6 s
+    range,      // every time directory in [times[0], times[1]] (OpenFOAM's -time A:B)
   };
   Kind kind = Kind::automatic;
   std::vector<double> times;

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <optional>
 #include <random>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -48,7 +49,8 @@ Import options:
   --max-nodes N           the most grid nodes (x * y * levels * times) to allocate (default 5e7: some 2.4 GB
                           in memory); a larger grid is refused with its size before anything is allocated
   --times WHICH           auto (default: the latest time of a steady case, every time of a transient one),
-                          all, latest, or a list T1,T2,... [s] of time directories
+                          all, latest, a list T1,T2,... [s] of time directories, or a range A:B [s] (the
+                          time directories from A to B; A: or :B leave an end open)
   --no-vtk                write no .pvd/.vtr series
 Compare options (also --times and --surface, as the import was made):
   --points N              random points per snapshot and level (default 20000)
@@ -135,7 +137,14 @@ Args parse(int argc, char** argv) {
       if (w == "auto") a.times.kind = K::automatic;
       else if (w == "all") a.times.kind = K::all;
       else if (w == "latest") a.times.kind = K::latest;
-      else {
+      else if (const std::size_t colon = w.find(':'); colon != std::string::npos) {  // A:B, either end open
+        a.times.kind = K::range;
+        const std::string lo = w.substr(0, colon), hi = w.substr(colon + 1);
+        a.times.times = {lo.empty() ? -std::numeric_limits<double>::infinity() : numbers(o, lo).at(0),
+                         hi.empty() ? std::numeric_limits<double>::infinity() : numbers(o, hi).at(0)};
+        if (!(a.times.times[1] >= a.times.times[0]) || hi.find(',') != std::string::npos)
+          throw UsageError("--times: a range is A:B with A <= B [s] (either end may be left out), got '" + w + "'");
+      } else {
         a.times.kind = K::listed;
         a.times.times = numbers(o, w);
       }

@@ -162,6 +162,15 @@ TEST_F(FieldCli, LevelsAreHeightsBelowTheSurfaceOfA3dCaseAndNeverClamped) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NEAR(file_u(out, 0, 2, 2), 0.4, 1e-6);  // z = 5 - 1 = 4 m
   fs::remove(out);
+  // Time ranges as OpenFOAM's tools take them: A:B, an end left open.
+  for (const char* t : {"1", "2"}) fs::copy(c / "0", c / t);
+  r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --times 1: --no-vtk");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 time(s)"), std::string::npos) << r.output;
+  fs::remove(out);
+  expect_refused("import " + c.string() + " -o " + out.string() + " --times 5:9",
+                 "no time directory with U in 5:9 (the case has 0, 1, 2)");
+  expect_refused("import " + c.string() + " -o " + out.string() + " --times 2:1", "a range is A:B with A <= B");
   // A spacing that would need 4e8 nodes is refused with the grid's size before anything is allocated.
   expect_refused("import " + c.string() + " -o " + out.string() + " --cell 0.01",
                  "a grid of 10001 x 10001 nodes at 0.01 m spacing, x 4 level(s) x 1 time(s) is 4.0008e+08 nodes");
