@@ -6,7 +6,6 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "io/atomic_file.h"
@@ -47,19 +46,37 @@ bool remove_plain_entry(const std::filesystem::path& dir, const std::string& rel
   return fs::remove(p, ec) && !ec;  // a folder only when empty
 }
 
+namespace {
+
+// NAME for a temporary sibling ".NAME.tmp.<pid>.<n>" (io::temporary_sibling), else empty. (A plain scan: GCC 12
+// warns inside <regex> under the sanitizers.)
+std::string temporary_of(const std::string& f) {
+  auto digits_back = [&](std::size_t end) {  // start of the run of digits that ends at `end`, or npos
+    std::size_t i = end;
+    while (i > 0 && f[i - 1] >= '0' && f[i - 1] <= '9') --i;
+    return i < end ? i : std::string::npos;
+  };
+  if (f.size() < 2 || f[0] != '.') return {};
+  const std::size_t n = digits_back(f.size());
+  if (n == std::string::npos || n < 1 || f[n - 1] != '.') return {};
+  const std::size_t pid = digits_back(n - 1);
+  if (pid == std::string::npos || pid < 5 || f.compare(pid - 5, 5, ".tmp.") != 0) return {};
+  return pid - 5 > 1 ? f.substr(1, pid - 6) : std::string();
+}
+
+}  // namespace
+
 void remove_temporaries(const std::filesystem::path& dir, const std::string& folder,
                         const std::set<std::string>& listed) {
   namespace fs = std::filesystem;
-  static const std::regex temporary(R"(\.(.+)\.tmp\.[0-9]+\.[0-9]+)");
   std::error_code ec;
   if (!folder.empty() && !is_plain_relative_path(folder)) return;
   const fs::path where = dir / folder;
   if (fs::is_symlink(fs::symlink_status(where, ec))) return;
   std::vector<std::string> doomed;
   for (const auto& entry : fs::directory_iterator(where, ec)) {
-    std::smatch m;
     const std::string f = entry.path().filename().string();
-    if (std::regex_match(f, m, temporary) && listed.count(folder + m[1].str())) doomed.push_back(folder + f);
+    if (const std::string of = temporary_of(f); !of.empty() && listed.count(folder + of)) doomed.push_back(folder + f);
   }
   for (const std::string& d : doomed) remove_plain_entry(dir, d);
 }
