@@ -1,5 +1,6 @@
 #include "field_vtk.h"
 
+#include <vtkDataSetAttributes.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -43,7 +44,7 @@ std::size_t write_field_vtk(const fs::path& pvd, const io::FieldFile& f) {
     grid->SetYCoordinates(axis(g.y));
     grid->SetZCoordinates(axis(g.z));
     vtkNew<vtkDoubleArray> u, speed;
-    vtkNew<vtkUnsignedCharArray> mask;
+    vtkNew<vtkUnsignedCharArray> mask, ghost;
     u->SetName("U");
     u->SetNumberOfComponents(3);
     u->SetNumberOfTuples(static_cast<vtkIdType>(per));
@@ -51,6 +52,9 @@ std::size_t write_field_vtk(const fs::path& pvd, const io::FieldFile& f) {
     speed->SetNumberOfTuples(static_cast<vtkIdType>(per));
     mask->SetName("mask");
     mask->SetNumberOfTuples(static_cast<vtkIdType>(per));
+    // Land is blanked (VTK's ghost array: ParaView hides cells with a hidden point), not shown as still water.
+    ghost->SetName(vtkDataSetAttributes::GhostArrayName());
+    ghost->SetNumberOfTuples(static_cast<vtkIdType>(per));
     // VTK's point order (x fastest, then y, then z) is the file's node order within a snapshot.
     for (std::size_t k = 0; k < per; ++k) {
       const std::size_t n = it * per + k;
@@ -59,10 +63,12 @@ std::size_t write_field_vtk(const fs::path& pvd, const io::FieldFile& f) {
       u->SetTuple(static_cast<vtkIdType>(k), uvw);
       speed->SetValue(static_cast<vtkIdType>(k), std::hypot(g.u[n], g.v[n]));
       mask->SetValue(static_cast<vtkIdType>(k), g.wet[k]);
+      ghost->SetValue(static_cast<vtkIdType>(k), g.wet[k] ? 0 : vtkDataSetAttributes::HIDDENPOINT);
     }
     grid->GetPointData()->AddArray(u);
     grid->GetPointData()->AddArray(speed);
     grid->GetPointData()->AddArray(mask);
+    grid->GetPointData()->AddArray(ghost);
     grid->GetPointData()->SetActiveScalars("speed");
     char name[64];
     std::snprintf(name, sizeof name, "%s_%04zu.vtr", pvd.stem().c_str(), it);

@@ -186,9 +186,23 @@ TEST_F(FieldCli, CaseFoamNamesTheCaseAndVtkErrorsBecomeOneClearLine) {
   if (!write_box_case(c)) GTEST_SKIP() << "OpenFOAM's blockMesh is not installed";
   std::ofstream(c / "case.foam") << "";
   const fs::path out = dir_ / "out.h5";
-  Result r = field("import " + (c / "case.foam").string() + " -o " + out.string() + " --cell 25 --no-vtk");
+  Result r = field("import " + (c / "case.foam").string() + " -o " + out.string() + " --cell 25 --bounds -50,0,100,100");
   EXPECT_EQ(r.code, 0) << r.output;
   fs::remove(out);
+  // field.pvd blanks land (x < 0 here: outside the mesh) with VTK's ghost array instead of showing still water.
+  const std::string py = "/usr/bin/python3 -c \"import vtk; r = vtk.vtkXMLRectilinearGridReader(); r.SetFileName('" +
+                         (dir_ / "out" / "out_0000.vtr").string() +
+                         "'); r.Update(); g = r.GetOutput().GetPointData().GetArray('vtkGhostType'); "
+                         "print(g.GetValue(0), g.GetValue(3))\"";
+  FILE* p = popen(py.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  int land = -1, water = -1;
+  EXPECT_EQ(std::fscanf(p, "%d %d", &land, &water), 2);
+  pclose(p);
+  EXPECT_EQ(land, 2);   // vtkDataSetAttributes::HIDDENPOINT: x = -50 m
+  EXPECT_EQ(water, 0);  // x = 25 m
+  fs::remove_all(dir_ / "out");
+  fs::remove(dir_ / "out.pvd");
   expect_refused("import " + c.string() + " -o " + (dir_ / "out").string(), "a field file is HDF5, named FILE.h5");
   expect_refused("import " + c.string() + " -o " + (dir_ / "out.vtr").string(), "got the extension '.vtr'");
   expect_refused("import " + c.string() + " -o " + (dir_ / "no" / "out.h5").string(), "does not exist");
