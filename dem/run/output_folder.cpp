@@ -208,6 +208,11 @@ OutputFolder::OutputFolder(const fs::path& requested, Mode mode) : path_(resolve
     check_entries(path_, listed);
     if (mode == Mode::fresh) remove_previous_run(path_, listed);
     manifest_ = std::make_unique<io::OutputManifest>(path_, mode == Mode::resume);
+    // A folder the previous run made that the clean-up left (your files are in it) stays the program's: listed
+    // again, so that a later run may write there even if this one does not.
+    for (const std::string& e : listed)
+      if (e.back() == '/' && fs::is_directory(fs::symlink_status(path_ / e.substr(0, e.size() - 1), ec)))
+        manifest_->record(e);
   } catch (const OutputFolderError&) {
     undo();
     throw;

@@ -246,6 +246,12 @@ TEST(Cli, RerunRemovesOnlyWhatThePreviousRunListed) {
   EXPECT_FALSE(fs::exists(out / "floes" / "floes_000003.vtp")) << "a frame of the previous run stayed";
   EXPECT_FALSE(fs::exists(out / "checkpoints" / "checkpoint_000004.h5")) << "a checkpoint of the previous run stayed";
   EXPECT_FALSE(fs::exists(out / "checkpoints" / ".checkpoint_000004.h5.tmp.1.2"));
+  // A run without VTK output leaves floes/ (your files are in it), still the program's: a later run writes there.
+  r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.1 --set output.vtk=false");
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "floes" / "notes.txt"));
   fs::remove_all(out);
 
   // Results polyfloe did not list (another program's, or a version before the manifest): refused, untouched.
