@@ -3,6 +3,7 @@
 #include <vtkLogger.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
+#include <vtkCellData.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -97,6 +98,7 @@ struct Mesh {
   vtkSmartPointer<vtkUnstructuredGrid> grid;
   vtkSmartPointer<vtkStaticCellLocator> locator;
   int max_cell_size = 0;
+  std::vector<double> centres;  // 3 per cell: the cell's parametric centre [m]
   double min_horizontal = 0.0;  // [m]
   bool one_layer = false;       // every cell spans the mesh's whole depth (a 2-D, depth-averaged case)
 };
@@ -105,7 +107,8 @@ struct Mesh {
 
 struct MeshSnapshot::Impl {
   std::shared_ptr<const Mesh> mesh;
-  std::vector<double> u;  // 3 per mesh point [m/s]
+  std::vector<double> u;       // 3 per mesh point [m/s]
+  std::vector<double> cell_u;  // 3 per cell: OpenFOAM's own values [m/s]
 };
 
 MeshSnapshot::MeshSnapshot() = default;
@@ -118,6 +121,22 @@ bool MeshSnapshot::depth_averaged() const { return impl_ && impl_->mesh->one_lay
 
 std::size_t MeshSnapshot::cells() const {
   return impl_ ? static_cast<std::size_t>(impl_->mesh->grid->GetNumberOfCells()) : 0;
+}
+
+Eigen::Vector3d MeshSnapshot::cell_centre(std::size_t c) const {
+  return Eigen::Vector3d(impl_->mesh->centres.data() + 3 * c);
+}
+
+Eigen::Vector3d MeshSnapshot::cell_velocity(std::size_t c) const {
+  return impl_->cell_u.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(impl_->cell_u.data() + 3 * c);
+}
+
+bool MeshSnapshot::has_cell_velocities() const { return impl_ && !impl_->cell_u.empty(); }
+
+Eigen::Vector2d MeshSnapshot::cell_z_range(std::size_t c) const {
+  double b[6];
+  impl_->mesh->grid->GetCellBounds(static_cast<vtkIdType>(c), b);
+  return {b[4], b[5]};
 }
 
 bool MeshSnapshot::sample(const Eigen::Vector3d& p, Eigen::Vector3d& u) const {
@@ -276,7 +295,16 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
       mesh->grid->GetBounds(mb);
       const double depth = mb[5] - mb[4];
       mesh->one_layer = true;
+      mesh->centres.resize(3 * static_cast<std::size_t>(mesh->grid->GetNumberOfCells()));
+      vtkNew<vtkGenericCell> cell;
+      std::vector<double> w(static_cast<std::size_t>(std::max(mesh->max_cell_size, 1)));
       for (vtkIdType c = 0; c < mesh->grid->GetNumberOfCells(); ++c) {
+        mesh->grid->GetCell(c, cell);
+        double pc[3], x[3];
+        cell->GetParametricCenter(pc);
+        int sub = 0;
+        cell->EvaluateLocation(sub, pc, x, w.data());
+        std::copy(x, x + 3, mesh->centres.begin() + 3 * c);
         double cb[6];
         mesh->grid->GetCellBounds(c, cb);
         mesh->min_horizontal = std::min({mesh->min_horizontal, cb[1] - cb[0], cb[3] - cb[2]});
@@ -293,6 +321,14 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
         if (!std::isfinite(v)) fail(dir, "U at time " + times_text({t}) + " is not finite at mesh point " + std::to_string(k));
         s.impl_->u[3 * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)] = v;
       }
+    // OpenFOAM's own cell values (the reader keeps them beside the points' interpolation): what `compare` measures
+    // the whole chain against.
+    vtkDataArray* cu = grid->GetCellData()->GetArray("U");
+    if (cu && cu->GetNumberOfComponents() == 3 && cu->GetNumberOfTuples() == grid->GetNumberOfCells()) {
+      s.impl_->cell_u.resize(3 * static_cast<std::size_t>(cu->GetNumberOfTuples()));
+      for (vtkIdType k = 0; k < cu->GetNumberOfTuples(); ++k)
+        for (int c = 0; c < 3; ++c) s.impl_->cell_u[3 * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)] = cu->GetComponent(k, c);
+    }
     s.time_ = t;
     double b[6];
     mesh->grid->GetBounds(b);

@@ -49,6 +49,12 @@ class MeshSnapshot {
   double time() const { return time_; }                    // [s]
   const Eigen::Matrix<double, 6, 1>& bounds() const { return bounds_; }  // xmin, xmax, ymin, ymax, zmin, zmax [m]
   std::size_t cells() const;
+  // Cell c's parametric centre [m], OpenFOAM's own velocity there [m/s] (zero when the reader gave no cell values)
+  // and the cell's z extent [m]: the reference the gridding chain (cell -> point -> grid) is measured against.
+  Eigen::Vector3d cell_centre(std::size_t c) const;
+  Eigen::Vector3d cell_velocity(std::size_t c) const;
+  Eigen::Vector2d cell_z_range(std::size_t c) const;
+  bool has_cell_velocities() const;
   // The smallest horizontal extent (x or y) of a cell's bounding box [m]: the finest detail the mesh resolves.
   double min_cell_size() const;
   // True when every cell spans the mesh's whole depth: a 2-D case (one cell through the depth, OpenFOAM's `empty`

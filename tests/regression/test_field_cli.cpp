@@ -157,6 +157,15 @@ TEST_F(FieldCli, LevelsAreHeightsBelowTheSurfaceOfA3dCaseAndNeverClamped) {
   // holds the values in single precision: 1e-6).
   EXPECT_NEAR(file_u(out, 0, 2, 2), 0.5, 1e-6);
   EXPECT_NEAR(file_u(out, 1, 2, 2), 0.7, 1e-6);
+  // compare measures the file against OpenFOAM's own cell values too: the cells whose depth holds the level
+  // (16 per level), the grid at their centres within the reader's single precision.
+  const Result cmp = field("compare " + c.string() + " " + out.string() + " --points 100");
+  ASSERT_EQ(cmp.code, 0) << cmp.output;
+  EXPECT_NE(cmp.output.find("t = 0 s, z = -5 m: RMS"), std::string::npos) << cmp.output;
+  EXPECT_NE(cmp.output.find("m/s (the cells' speed reaches 0.5 m/s; 16 cells)"), std::string::npos) << cmp.output;
+  const std::size_t at = cmp.output.find("Largest difference from the cell values: ");
+  ASSERT_NE(at, std::string::npos) << cmp.output;
+  EXPECT_LT(std::stod(cmp.output.substr(at + 41)), 1e-6) << cmp.output;
   fs::remove(out);
   r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --z -1 --surface 5 --no-vtk");
   ASSERT_EQ(r.code, 0) << r.output;
