@@ -267,6 +267,20 @@ int info(const Args& a) {
   return 0;
 }
 
+// Differences between the grid and a reference velocity: RMS, largest, the reference's top speed, the count.
+struct Differences {
+  double sum2 = 0.0, max = 0.0, top = 0.0;
+  long n = 0;
+  void add(const forcing::Vec2& grid, const Eigen::Vector2d& reference) {
+    const double e = (grid - reference).norm();
+    sum2 += e * e;
+    max = std::max(max, e);
+    top = std::max(top, reference.norm());
+    ++n;
+  }
+  double rms() const { return n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0; }
+};
+
 int compare(const Args& a) {
   const fs::path case_dir = a.positional[0], file = a.positional[1];
   const io::FieldFile f = io::read_field_file(file);
@@ -289,10 +303,9 @@ int compare(const Args& a) {
   double worst = 0.0;
   for (std::size_t it = 0; it < g.t.size(); ++it)
     for (const double z : g.z) {
-      double sum2 = 0.0, max = 0.0, top = 0.0;
-      long n = 0;
+      Differences d;
       const double t_file = g.t[it];
-      for (long tries = 0; n < a.points && tries < 50 * a.points; ++tries) {
+      for (long tries = 0; d.n < a.points && tries < 50 * a.points; ++tries) {
         const forcing::Vec3 p{ux(rng), uy(rng), z};
         Eigen::Vector3d ref3;
         if (!(*snaps)[it].sample({p.x(), p.y(), std::clamp(surface + z, mb[4] + inset, mb[5] - inset)}, ref3)) continue;
@@ -302,16 +315,11 @@ int compare(const Args& a) {
         } catch (const forcing::FieldError&) {
           continue;  // in the mesh but not in the grid's water: the land mask's edge, measured separately
         }
-        const double e = (grid_u - ref3.head<2>()).norm();
-        sum2 += e * e;
-        max = std::max(max, e);
-        top = std::max(top, ref3.head<2>().norm());
-        ++n;
+        d.add(grid_u, ref3.head<2>());
       }
-      const double rms = n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
-      worst = std::max(worst, max);
-      std::cout << "  t = " << t_file << " s, z = " << z << " m: RMS " << rms << " m/s, max " << max
-                << " m/s (the speed reaches " << top << " m/s; " << n << " points)\n";
+      worst = std::max(worst, d.max);
+      std::cout << "  t = " << t_file << " s, z = " << z << " m: RMS " << d.rms() << " m/s, max " << d.max
+                << " m/s (the speed reaches " << d.top << " m/s; " << d.n << " points)\n";
     }
   std::cout << "Largest difference: " << worst << " m/s\n";
 
@@ -325,8 +333,7 @@ int compare(const Args& a) {
     const coupling::MeshSnapshot& s = (*snaps)[it];
     const bool flat = s.depth_averaged();
     for (const double z : g.z) {
-      double sum2 = 0.0, max = 0.0, top = 0.0;
-      long n = 0;
+      Differences d;
       for (std::size_t c = 0; c < s.cells(); ++c) {
         const Eigen::Vector2d zr = s.cell_z_range(c);
         if (!flat && !(surface + z >= zr[0] && surface + z <= zr[1])) continue;
@@ -337,16 +344,11 @@ int compare(const Args& a) {
         } catch (const forcing::FieldError&) {
           continue;  // outside the grid or beside land
         }
-        const double e = (grid_u - ref.head<2>()).norm();
-        sum2 += e * e;
-        max = std::max(max, e);
-        top = std::max(top, ref.head<2>().norm());
-        ++n;
+        d.add(grid_u, ref.head<2>());
       }
-      const double rms = n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
-      worst_cells = std::max(worst_cells, max);
-      std::cout << "  t = " << g.t[it] << " s, z = " << z << " m: RMS " << rms << " m/s, max " << max
-                << " m/s (the cells' speed reaches " << top << " m/s; " << n << " cells)\n";
+      worst_cells = std::max(worst_cells, d.max);
+      std::cout << "  t = " << g.t[it] << " s, z = " << z << " m: RMS " << d.rms() << " m/s, max " << d.max
+                << " m/s (the cells' speed reaches " << d.top << " m/s; " << d.n << " cells)\n";
     }
   }
   std::cout << "Largest difference from the cell values: " << worst_cells << " m/s\n";
