@@ -225,7 +225,7 @@ int run_spatial_scene(const Args& args, const scene::Scene& sc) {
   opt.version = POLYFLOE_VERSION;
   try {
     opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
-    run::OutputFolder::check(opt.output_dir, run::OutputFolder::Mode::fresh);
+    run::OutputFolder::check(opt.output_dir);
   } catch (const run::OutputFolderError& e) {
     std::cerr << "polyfloe: error: " << e.what() << "\n";
     return run::kExitBadInput;
@@ -341,7 +341,7 @@ int main(int argc, char** argv) {
       if (restart->scene_resolved != now) scene_changes = changed_lines(restart->scene_resolved, now);
     }
     opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
-    run::OutputFolder::check(opt.output_dir, restart ? run::OutputFolder::Mode::resume : run::OutputFolder::Mode::fresh);
+    run::OutputFolder::check(opt.output_dir);
     sim.emplace(sc, std::move(*world), opt, std::move(restart), restart_file);
     if (!scene_changes.empty())
       std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "

@@ -165,10 +165,9 @@ fs::path OutputFolder::resolve(const fs::path& requested) {
   return dir;
 }
 
-void OutputFolder::check(const fs::path& resolved, Mode mode) {
+void OutputFolder::check(const fs::path& resolved) {
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(resolved, ec))) return;  // a new folder: nothing there to collide with
-  (void)mode;
   for (const char* own : {kLockName, io::OutputManifest::kFileName}) {
     const fs::file_status st = fs::symlink_status(resolved / own, ec);
     if (fs::exists(st) && !fs::is_regular_file(st))

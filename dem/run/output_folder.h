@@ -38,9 +38,9 @@ class OutputFolder {
   // location, a name too long, a part of it that is a file). Throws OutputFolderError.
   static std::filesystem::path resolve(const std::filesystem::path& requested);
 
-  // The checks open() makes on the entries a run writes, without creating or locking anything (so that a
-  // refusal comes before any other work). Throws OutputFolderError.
-  static void check(const std::filesystem::path& resolved, Mode mode);
+  // The checks the constructor makes on the entries a run writes (the same for a fresh and a resumed run),
+  // without creating or locking anything, so that a refusal comes before any other work. Throws OutputFolderError.
+  static void check(const std::filesystem::path& resolved);
 
   // Creates the folder if needed, takes the lock, checks the entries and, for a fresh run, removes the previous
   // run's files. Throws OutputFolderError (then leaves nothing it made behind).
