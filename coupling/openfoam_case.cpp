@@ -7,18 +7,23 @@
 #include <vtkCompositeDataSet.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkDummyController.h>
 #include <vtkGenericCell.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
-#include <vtkOpenFOAMReader.h>
+#include <vtkPOpenFOAMReader.h>
+#include <vtkPoints.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
 #include <vtkStaticCellLocator.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <stdlib.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -160,9 +165,14 @@ bool MeshSnapshot::sample(const Eigen::Vector3d& p, Eigen::Vector3d& u) const {
 
 namespace {
 
+struct TimeDir {
+  double t;
+  std::string name;
+};
+
 // The time directories of `dir` (a case or one of its processor*/ folders) that hold U, increasing.
-std::vector<double> times_with_u(const fs::path& dir) {
-  std::vector<double> times;
+std::vector<TimeDir> times_with_u(const fs::path& dir) {
+  std::vector<TimeDir> times;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     if (!e.is_directory(ec)) continue;
@@ -170,32 +180,74 @@ std::vector<double> times_with_u(const fs::path& dir) {
     double t = 0.0;
     const auto [end, err] = std::from_chars(name.data(), name.data() + name.size(), t);
     if (err != std::errc() || end != name.data() + name.size() || !std::isfinite(t)) continue;
-    if (fs::is_regular_file(e.path() / "U", ec) || fs::is_regular_file(e.path() / "U.gz", ec)) times.push_back(t);
+    if (fs::is_regular_file(e.path() / "U", ec) || fs::is_regular_file(e.path() / "U.gz", ec)) times.push_back({t, name});
   }
-  std::sort(times.begin(), times.end());
+  std::sort(times.begin(), times.end(), [](const TimeDir& a, const TimeDir& b) { return a.t < b.t; });
   return times;
+}
+
+bool same_time(double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(1.0, std::abs(a)); }
+
+// processor0 ... processorN-1 (decomposePar's folders), checked to be numbered without a gap.
+int count_processors(const fs::path& dir) {
+  std::vector<int> ids;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("processor", 0) != 0 || !e.is_directory(ec)) continue;
+    const std::string digits = name.substr(9);
+    int id = -1;
+    const auto [end, err] = std::from_chars(digits.data(), digits.data() + digits.size(), id);
+    if (err == std::errc() && end == digits.data() + digits.size() && !digits.empty()) {
+      ids.push_back(id);
+    } else if (name.rfind("processors", 0) == 0) {
+      fail(dir, "a decomposed case written with OpenFOAM's collated file handler (" + name + "/), which VTK's "
+                "reader cannot read: reconstruct it with `reconstructPar -case " + dir.string() +
+                "`, or run the solver with -fileHandler uncollated");
+    }
+  }
+  std::sort(ids.begin(), ids.end());
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    if (ids[k] != static_cast<int>(k))
+      fail(dir, "a decomposed case whose processor folders are not processor0 to processor" +
+                    std::to_string(ids.size() - 1) + " (processor" + std::to_string(k) + " is missing)");
+  return static_cast<int>(ids.size());
 }
 
 }  // namespace
 
-std::vector<double> case_times(const fs::path& dir) {
+CaseLayout case_layout(const fs::path& dir) {
   check_case(dir);
-  const std::vector<double> times = times_with_u(dir);
-  // A decomposed case (decomposePar, then a solver run with -parallel) writes its solution into processor*/ only:
-  // the case's own time directories then hold the initial condition alone. Reading them would import t = 0 as if
-  // it were the flow; the solution must be reconstructed first.
+  std::vector<TimeDir> times = times_with_u(dir);
+  CaseLayout layout;
   std::error_code ec;
-  if (fs::is_directory(dir / "processor0", ec)) {
-    const std::vector<double> decomposed = times_with_u(dir / "processor0");
-    if (!decomposed.empty() && (times.empty() || decomposed.back() > times.back()))
-      fail(dir, "a decomposed case: its solution (t = " + times_text(decomposed) + " in processor*/) is not "
-                "reconstructed, and " + (times.empty() ? std::string("the case itself holds no U") :
-                "the case's own U is only at t = " + times_text(times) + " (the initial condition)") +
-                "; reconstruct it first with OpenFOAM's `reconstructPar -case " + dir.string() + "`, then import");
+  const int processors = count_processors(dir);
+  if (processors > 0) {
+    std::vector<TimeDir> decomposed = times_with_u(dir / "processor0");
+    if (!decomposed.empty() && (times.empty() || decomposed.back().t > times.back().t)) {
+      // Every processor must hold every time: a run stopped while writing leaves one behind.
+      for (int p = 1; p < processors; ++p) {
+        const std::vector<TimeDir> other = times_with_u(dir / ("processor" + std::to_string(p)));
+        for (const TimeDir& d : decomposed)
+          if (std::none_of(other.begin(), other.end(), [&](const TimeDir& o) { return same_time(o.t, d.t); }))
+            fail(dir, "a decomposed case whose processor" + std::to_string(p) + "/ has no U at t = " + d.name +
+                          " (processor0/ has it): the run did not finish writing that time; choose the times every "
+                          "processor holds with --times");
+      }
+      layout.decomposed = true;
+      layout.processors = processors;
+      times = std::move(decomposed);
+    }
   }
   if (times.empty()) fail(dir, "no time directory holds a velocity field U");
-  return times;
+  for (const TimeDir& d : times) {
+    layout.times.push_back(d.t);
+    layout.names.push_back(d.name);
+  }
+  return layout;
 }
+
+std::vector<double> case_times(const fs::path& dir) { return case_layout(dir).times; }
 
 bool case_is_steady(const fs::path& dir) {
   std::ifstream in(dir / "system" / "fvSchemes");
@@ -216,43 +268,233 @@ bool case_is_steady(const fs::path& dir) {
   return false;
 }
 
-std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSelection& which) {
-  const std::vector<double> available = case_times(dir);
-  std::vector<double> chosen;
+std::vector<double> choose_times(const fs::path& dir, const CaseLayout& layout, const TimeSelection& which,
+                                 bool steady) {
+  const std::vector<double>& available = layout.times;
   using Kind = TimeSelection::Kind;
-  const Kind kind = which.kind == Kind::automatic ? (case_is_steady(dir) ? Kind::latest : Kind::all) : which.kind;
-  switch (kind) {
+  switch (which.kind) {
     case Kind::automatic:
-    case Kind::all: chosen = available; break;
-    case Kind::latest: chosen = {available.back()}; break;
-    case Kind::listed:
+      if (steady) return {available.back()};
+      // A transient case's t = 0 is its initial condition, not a solution: left out when later times exist.
+      if (available.size() > 1 && same_time(available.front(), 0.0))
+        return std::vector<double>(available.begin() + 1, available.end());
+      return available;
+    case Kind::all: return available;
+    case Kind::latest: return {available.back()};
+    case Kind::listed: {
       if (which.times.empty()) fail(dir, "no time chosen");
+      std::vector<double> chosen;
       for (const double t : which.times) {
-        const auto it = std::find_if(available.begin(), available.end(),
-                                     [t](double a) { return std::abs(a - t) <= 1e-6 * std::max(1.0, std::abs(t)); });
+        const auto it = std::find_if(available.begin(), available.end(), [t](double a) { return same_time(a, t); });
         if (it == available.end())
           fail(dir, "no time directory " + times_text({t}) + " with U (the case has " + times_text(available) + ")");
         chosen.push_back(*it);
       }
       std::sort(chosen.begin(), chosen.end());
       chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
-      break;
+      return chosen;
+    }
     case Kind::range: {
       if (which.times.size() != 2) fail(dir, "a time range needs its two ends");
       const double lo = which.times[0], hi = which.times[1];  // an open end is infinite
+      std::vector<double> chosen;
       for (const double a : available)
         if (a >= lo - 1e-6 * std::max(1.0, std::abs(a)) && a <= hi + 1e-6 * std::max(1.0, std::abs(a)))
           chosen.push_back(a);
       if (chosen.empty())
         fail(dir, "no time directory with U in " + times_text({lo}) + ":" + times_text({hi}) + " (the case has " +
                       times_text(available) + ")");
-      break;
+      return chosen;
     }
   }
+  return available;
+}
 
-  vtkNew<vtkOpenFOAMReader> reader;
+bool CaseTransform::identity() const {
+  return scale == Eigen::Vector3d::Ones() && rotate == 0.0 && translate == Eigen::Vector3d::Zero() &&
+         velocity_scale == 1.0;
+}
+
+// Builds snapshots from the reader's output (a friend of MeshSnapshot).
+struct SnapshotBuilder {
+  static MeshSnapshot make(std::shared_ptr<const Mesh> mesh, std::vector<double> u, std::vector<double> cell_u,
+                           double t) {
+    MeshSnapshot s;
+    s.impl_ = std::make_unique<MeshSnapshot::Impl>();
+    s.impl_->mesh = std::move(mesh);
+    s.impl_->u = std::move(u);
+    s.impl_->cell_u = std::move(cell_u);
+    s.time_ = t;
+    double b[6];
+    s.impl_->mesh->grid->GetBounds(b);
+    for (int k = 0; k < 6; ++k) s.bounds_[k] = b[k];
+    return s;
+  }
+};
+
+namespace {
+
+// A scratch folder removed with everything in it (links are removed, never followed).
+struct ScratchDir {
+  fs::path path;
+  ScratchDir() {
+    std::string tmpl = (fs::temp_directory_path() / "polyfloe-foam.XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw CouplingError("cannot create a scratch folder under " + fs::temp_directory_path().string());
+    path = tmpl;
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+};
+
+std::string shell_quoted(const std::string& s) {
+  std::string q = "'";
+  for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// An OpenFOAM tool on PATH, or empty.
+fs::path find_tool(const char* name) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::string d;
+  std::error_code ec;
+  while (std::getline(dirs, d, ':'))
+    if (!d.empty() && fs::is_regular_file(fs::path(d) / name, ec)) return fs::path(d) / name;
+  return {};
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A copy of the case that VTK's reader can read: constant/ linked, every chosen time's U copied and written again by
+// OpenFOAM itself (`postProcess -func 'writeObjects(U)'`): its #include, #includeEtc, $macros, #calc and
+// patch-group entries resolved into one plain entry per patch, in binary (no digit lost). system/ is the scratch's
+// own: the case's function objects do not run and its fvSchemes need not be complete.
+void expand_into(const fs::path& scratch, const fs::path& dir, const CaseLayout& layout,
+                 const std::vector<double>& chosen, const fs::path& tool) {
+  const fs::path case_abs = fs::absolute(dir);
+  fs::create_directory(scratch / "system");
+  const std::string header = "FoamFile { version 2.0; format ascii; class dictionary; object ";
+  std::ofstream(scratch / "system" / "controlDict")
+      << header << "controlDict; }\napplication postProcess;\nstartFrom latestTime;\nstopAt endTime;\nendTime 0;\n"
+         "deltaT 1;\nwriteControl timeStep;\nwriteInterval 1;\nwriteFormat binary;\nwritePrecision 17;\n"
+         "writeCompression off;\ntimeFormat general;\ntimePrecision 17;\n";
+  std::ofstream(scratch / "system" / "fvSchemes")
+      << header << "fvSchemes; }\nddtSchemes { default Euler; }\ngradSchemes { default Gauss linear; }\n"
+         "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
+         "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n";
+  std::ofstream(scratch / "system" / "fvSolution") << header << "fvSolution; }\n";
+  fs::create_directory_symlink(case_abs / "constant", scratch / "constant");
+  for (const double t : chosen) {
+    const std::size_t k = static_cast<std::size_t>(
+        std::find_if(layout.times.begin(), layout.times.end(), [t](double a) { return same_time(a, t); }) -
+        layout.times.begin());
+    const fs::path from = case_abs / layout.names.at(k), to = scratch / layout.names[k];
+    fs::create_directory(to);
+    const char* file = fs::exists(from / "U") ? "U" : "U.gz";
+    fs::copy_file(from / file, to / file);
+  }
+  // OpenFOAM's tools need to know where their etc/ is (Debian's: /usr/share/openfoam).
+  const std::string env = std::string(std::getenv("FOAM_ETC") ? "" : "FOAM_ETC=/usr/share/openfoam/etc ") +
+                          (std::getenv("WM_PROJECT_DIR") ? "" : "WM_PROJECT_DIR=/usr/share/openfoam ");
+  const fs::path log = scratch / "log.postProcess";
+  const std::string cmd = env + shell_quoted(tool.string()) + " -case " + shell_quoted(scratch.string()) +
+                          " -fields '(U)' -func 'writeObjects(U)' > " + shell_quoted(log.string()) + " 2>&1";
+  const int rc = std::system(cmd.c_str());
+  const std::string said = slurp(log);
+  if (rc != 0 || said.find("FOAM FATAL") != std::string::npos) {
+    std::size_t at = said.find("FOAM FATAL");
+    std::string first = said.substr(at == std::string::npos ? 0 : at, 600);
+    std::replace(first.begin(), first.end(), '\n', ' ');
+    fail(dir, "VTK's reader cannot read the velocity files, and OpenFOAM could not write them out "
+              "plainly (`postProcess -fields '(U)' -func 'writeObjects(U)'` on a copy: " + first + ")");
+  }
+}
+
+// The internal mesh, transformed, and its locator and cell geometry.
+std::shared_ptr<Mesh> build_mesh(vtkUnstructuredGrid* grid, const CaseTransform& tf) {
+  auto mesh = std::make_shared<Mesh>();
+  mesh->grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  mesh->grid->CopyStructure(grid);
+  if (!tf.identity()) {  // own points: the reader's are cached and shared
+    const double c = std::cos(tf.rotate * M_PI / 180.0), s = std::sin(tf.rotate * M_PI / 180.0);
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    points->SetNumberOfPoints(grid->GetNumberOfPoints());
+    for (vtkIdType k = 0; k < grid->GetNumberOfPoints(); ++k) {
+      double p[3];
+      grid->GetPoint(k, p);
+      const double x = tf.scale.x() * p[0], y = tf.scale.y() * p[1], z = tf.scale.z() * p[2];
+      points->SetPoint(k, c * x - s * y + tf.translate.x(), s * x + c * y + tf.translate.y(), z + tf.translate.z());
+    }
+    mesh->grid->SetPoints(points);
+  }
+  mesh->locator = vtkSmartPointer<vtkStaticCellLocator>::New();
+  mesh->locator->SetDataSet(mesh->grid);
+  mesh->locator->BuildLocator();
+  mesh->max_cell_size = mesh->grid->GetMaxCellSize();
+  mesh->min_horizontal = std::numeric_limits<double>::infinity();
+  double mb[6];
+  mesh->grid->GetBounds(mb);
+  const double depth = mb[5] - mb[4];
+  mesh->one_layer = true;
+  mesh->centres.resize(3 * static_cast<std::size_t>(mesh->grid->GetNumberOfCells()));
+  vtkNew<vtkGenericCell> cell;
+  std::vector<double> w(static_cast<std::size_t>(std::max(mesh->max_cell_size, 1)));
+  for (vtkIdType c = 0; c < mesh->grid->GetNumberOfCells(); ++c) {
+    mesh->grid->GetCell(c, cell);
+    double pc[3], x[3];
+    cell->GetParametricCenter(pc);
+    int sub = 0;
+    cell->EvaluateLocation(sub, pc, x, w.data());
+    std::copy(x, x + 3, mesh->centres.begin() + 3 * c);
+    double cb[6];
+    mesh->grid->GetCellBounds(c, cb);
+    mesh->min_horizontal = std::min({mesh->min_horizontal, cb[1] - cb[0], cb[3] - cb[2]});
+    if (cb[5] - cb[4] < depth * (1.0 - 1e-6)) mesh->one_layer = false;
+  }
+  return mesh;
+}
+
+// 3 values per tuple of a velocity array, rotated and scaled; `what` names it in the error for a value that is not
+// finite.
+std::vector<double> velocities(vtkDataArray* a, const CaseTransform& tf, const fs::path& dir, double t,
+                               const char* what) {
+  const double c = std::cos(tf.rotate * M_PI / 180.0), s = std::sin(tf.rotate * M_PI / 180.0),
+               k = tf.velocity_scale;
+  std::vector<double> out(3 * static_cast<std::size_t>(a->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) {
+    double v[3];
+    a->GetTuple(i, v);
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+      fail(dir, "U at time " + times_text({t}) + " is not finite at " + what + " " + std::to_string(i));
+    double* o = out.data() + 3 * static_cast<std::size_t>(i);
+    o[0] = k * (c * v[0] - s * v[1]);
+    o[1] = k * (s * v[0] + c * v[1]);
+    o[2] = k * v[2];
+  }
+  return out;
+}
+
+// Reads `read_dir` (the case, or its expanded scratch copy) at `chosen`. A velocity file the reader cannot parse
+// (a directive, a patch-group entry, a regular expression for patch names) sets *retry (when given) to what the reader
+// said and returns nothing; every other problem throws, naming `dir`.
+std::vector<MeshSnapshot> read_times(const fs::path& read_dir, const fs::path& dir, const CaseLayout& layout,
+                                     const std::vector<double>& chosen, const CaseTransform& tf, std::string* retry) {
+  vtkNew<vtkPOpenFOAMReader> reader;
   const VtkMessages vtk_said;
-  reader->SetFileName((dir / "system" / "controlDict").c_str());
+  vtkNew<vtkDummyController> one_process;  // this process reads every processor's part
+  reader->SetController(one_process);
+  reader->SetCaseType(layout.decomposed ? vtkPOpenFOAMReader::DECOMPOSED_CASE : vtkPOpenFOAMReader::RECONSTRUCTED_CASE);
+  reader->SetFileName((read_dir / "system" / "controlDict").c_str());
   reader->SkipZeroTimeOff();
   reader->UpdateInformation();
   reader->DisableAllPatchArrays();
@@ -273,69 +515,64 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
     if (!grid || grid->GetNumberOfCells() == 0) fail(dir, "VTK's OpenFOAM reader found no internal mesh" + vtk_said.said());
     vtkDataArray* u = grid->GetPointData()->GetArray("U");
     if (!u || u->GetNumberOfComponents() != 3) {
+      const std::string said = vtk_said.said();
+      if (retry) {  // OpenFOAM may write it plainly: try again on that copy
+        *retry = said;
+        return {};
+      }
       std::string why = "no velocity U at time " + times_text({t}) + " (the reader could not read " + times_text({t}) +
-                        "/U" + vtk_said.said() + ")";
-      if (why.find("include") != std::string::npos)
-        why += "; VTK's reader cannot expand #include / #includeEtc: expand the file with OpenFOAM's "
-               "`foamDictionary -expand`" + std::string(t == 0.0 ? ", or skip the initial condition (--times latest, "
-               "or the solution times T1,T2,...)" : "");
+                        "/U" + said + ")";
+      if (said.find("directive") != std::string::npos)
+        why += "; VTK's reader cannot expand this directive, and OpenFOAM (its postProcess), which would, is not on "
+               "PATH: install OpenFOAM (bash scripts/setup.sh), or write the field out plainly with OpenFOAM's "
+               "`postProcess -fields '(U)' -func 'writeObjects(U)'` on a copy of the case" +
+               std::string(t == 0.0 ? ", or skip the initial condition (--times latest, or a range of the "
+               "solution times A:B)" : "");
       fail(dir, why);
     }
     if (!mesh || mesh->grid->GetNumberOfPoints() != grid->GetNumberOfPoints() ||
-        mesh->grid->GetNumberOfCells() != grid->GetNumberOfCells()) {
-      mesh = std::make_shared<Mesh>();
-      mesh->grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-      mesh->grid->CopyStructure(grid);
-      mesh->locator = vtkSmartPointer<vtkStaticCellLocator>::New();
-      mesh->locator->SetDataSet(mesh->grid);
-      mesh->locator->BuildLocator();
-      mesh->max_cell_size = mesh->grid->GetMaxCellSize();
-      mesh->min_horizontal = std::numeric_limits<double>::infinity();
-      double mb[6];
-      mesh->grid->GetBounds(mb);
-      const double depth = mb[5] - mb[4];
-      mesh->one_layer = true;
-      mesh->centres.resize(3 * static_cast<std::size_t>(mesh->grid->GetNumberOfCells()));
-      vtkNew<vtkGenericCell> cell;
-      std::vector<double> w(static_cast<std::size_t>(std::max(mesh->max_cell_size, 1)));
-      for (vtkIdType c = 0; c < mesh->grid->GetNumberOfCells(); ++c) {
-        mesh->grid->GetCell(c, cell);
-        double pc[3], x[3];
-        cell->GetParametricCenter(pc);
-        int sub = 0;
-        cell->EvaluateLocation(sub, pc, x, w.data());
-        std::copy(x, x + 3, mesh->centres.begin() + 3 * c);
-        double cb[6];
-        mesh->grid->GetCellBounds(c, cb);
-        mesh->min_horizontal = std::min({mesh->min_horizontal, cb[1] - cb[0], cb[3] - cb[2]});
-        if (cb[5] - cb[4] < depth * (1.0 - 1e-6)) mesh->one_layer = false;
-      }
-    }
-    MeshSnapshot s;
-    s.impl_ = std::make_unique<MeshSnapshot::Impl>();
-    s.impl_->mesh = mesh;
-    s.impl_->u.resize(3 * static_cast<std::size_t>(u->GetNumberOfTuples()));
-    for (vtkIdType k = 0; k < u->GetNumberOfTuples(); ++k)
-      for (int c = 0; c < 3; ++c) {
-        const double v = u->GetComponent(k, c);
-        if (!std::isfinite(v)) fail(dir, "U at time " + times_text({t}) + " is not finite at mesh point " + std::to_string(k));
-        s.impl_->u[3 * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)] = v;
-      }
+        mesh->grid->GetNumberOfCells() != grid->GetNumberOfCells())
+      mesh = build_mesh(grid, tf);
     // OpenFOAM's own cell values (the reader keeps them beside the points' interpolation): what `compare` measures
     // the whole chain against.
     vtkDataArray* cu = grid->GetCellData()->GetArray("U");
-    if (cu && cu->GetNumberOfComponents() == 3 && cu->GetNumberOfTuples() == grid->GetNumberOfCells()) {
-      s.impl_->cell_u.resize(3 * static_cast<std::size_t>(cu->GetNumberOfTuples()));
-      for (vtkIdType k = 0; k < cu->GetNumberOfTuples(); ++k)
-        for (int c = 0; c < 3; ++c) s.impl_->cell_u[3 * static_cast<std::size_t>(k) + static_cast<std::size_t>(c)] = cu->GetComponent(k, c);
-    }
-    s.time_ = t;
-    double b[6];
-    mesh->grid->GetBounds(b);
-    for (int k = 0; k < 6; ++k) s.bounds_[k] = b[k];
-    out.push_back(std::move(s));
+    std::vector<double> cell_u;
+    if (cu && cu->GetNumberOfComponents() == 3 && cu->GetNumberOfTuples() == grid->GetNumberOfCells())
+      cell_u = velocities(cu, tf, dir, t, "cell");
+    out.push_back(SnapshotBuilder::make(mesh, velocities(u, tf, dir, t, "mesh point"), std::move(cell_u), t));
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSelection& which,
+                                             const CaseTransform& tf, CaseNotes* notes) {
+  if (!(tf.scale.array() > 0.0).all() || !tf.scale.allFinite() || !std::isfinite(tf.rotate) ||
+      !tf.translate.allFinite() || !std::isfinite(tf.velocity_scale))
+    fail(dir, "the transform's scale must be > 0 and every number finite");
+  const CaseLayout layout = case_layout(dir);
+  const bool steady = case_is_steady(dir);
+  const std::vector<double> chosen = choose_times(dir, layout, which, steady);
+  CaseNotes local;
+  CaseNotes& n = notes ? *notes : local;
+  n.layout = layout;
+  n.read = chosen;
+  n.initial_skipped = which.kind == TimeSelection::Kind::automatic && !steady && chosen.size() < layout.times.size();
+  n.expanded = false;
+  const fs::path tool = find_tool("postProcess");
+  std::string unreadable;
+  std::vector<MeshSnapshot> out = read_times(dir, dir, layout, chosen, tf, tool.empty() ? nullptr : &unreadable);
+  if (unreadable.empty()) return out;
+  // A file VTK's reader cannot parse (#includeEtc and patch-group entries in almost every tutorial's boundary
+  // conditions): read a copy OpenFOAM wrote out plainly. decomposePar and parallel solvers write plain files.
+  if (layout.decomposed)
+    fail(dir, "a decomposed case whose velocity files VTK's reader cannot read" + unreadable +
+              ": reconstruct it with `reconstructPar -case " + dir.string() + "` and import the reconstructed case");
+  const ScratchDir scratch;
+  expand_into(scratch.path, dir, layout, chosen, tool);
+  n.expanded = true;
+  return read_times(scratch.path, dir, layout, chosen, tf, nullptr);
 }
 
 }  // namespace polyfloe::coupling

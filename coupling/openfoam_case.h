@@ -21,6 +21,7 @@ class CouplingError : public std::runtime_error {
 struct TimeSelection {
   enum class Kind {
     automatic,  // steady cases (fvSchemes ddtSchemes steadyState): the latest time; transient cases: every time
+                // but t = 0 (the initial condition) when later times exist
     all,        // every time directory with U, 0 included
     latest,     // the last one
     listed,     // `times`, each matched to a time directory within 1e-6 s
@@ -30,8 +31,18 @@ struct TimeSelection {
   std::vector<double> times;
 };
 
-// The case's time directories that hold U, increasing [s]; throws CouplingError for a folder that is not a case,
-// and for a decomposed case whose solution is only in processor*/ (naming reconstructPar as the fix).
+// Where a case keeps its solution. A decomposed case (decomposePar, then a solver run with -parallel) writes it
+// into processor0/, processor1/, ... only: its own time directories hold the initial condition at most. It is read
+// decomposed (every processor's cells) when processor0/ holds a later time with U than the case itself.
+struct CaseLayout {
+  bool decomposed = false;
+  int processors = 0;              // processor*/ folders read (decomposed cases)
+  std::vector<double> times;       // the time directories with U, increasing [s]
+  std::vector<std::string> names;  // those directories' names as written ("0.5", "1e-05")
+};
+// Throws CouplingError for a folder that is not a case, or a case with no U anywhere.
+CaseLayout case_layout(const std::filesystem::path& case_dir);
+// The case's time directories that hold U, increasing [s] (case_layout's times).
 std::vector<double> case_times(const std::filesystem::path& case_dir);
 // True when the case's fvSchemes says ddtSchemes default steadyState (simpleFoam and friends).
 bool case_is_steady(const std::filesystem::path& case_dir);
@@ -65,16 +76,44 @@ class MeshSnapshot {
   bool sample(const Eigen::Vector3d& p, Eigen::Vector3d& u) const;
 
  private:
-  friend std::vector<MeshSnapshot> read_openfoam_case(const std::filesystem::path&, const TimeSelection&);
+  friend struct SnapshotBuilder;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   double time_ = 0.0;
   Eigen::Matrix<double, 6, 1> bounds_ = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
-// Reads U on the internal mesh at the selected times (patches and every other field are not read). Throws
+// The selected times among the layout's (which.kind automatic needs `steady`); throws CouplingError naming the case
+// for a listed time that is not there or an empty range.
+std::vector<double> choose_times(const std::filesystem::path& case_dir, const CaseLayout& layout,
+                                 const TimeSelection& which, bool steady);
+
+// A rigid placement and scaling of the case, applied as it is read: a mesh point p becomes R(rotate) (scale o p) +
+// translate (scale per axis, then the rotation about the vertical z axis, counter-clockwise seen from above, then
+// the shift), a velocity u becomes velocity_scale R u.
+struct CaseTransform {
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();      // [-], > 0
+  double rotate = 0.0;                                  // [degree] about z
+  Eigen::Vector3d translate = Eigen::Vector3d::Zero();  // [m]
+  double velocity_scale = 1.0;                          // [-]
+  bool identity() const;
+};
+
+// What reading a case found, for the summary a user reads.
+struct CaseNotes {
+  CaseLayout layout;
+  std::vector<double> read;       // the times read [s]
+  bool initial_skipped = false;   // t = 0 left out by the automatic choice of a transient case
+  bool expanded = false;          // the velocity files were written out plainly by OpenFOAM for VTK's reader
+};
+
+// Reads U on the internal mesh at the selected times (patches and every other field are not read), decomposed cases
+// from their processor*/ folders. Velocity files VTK's reader cannot parse (directives such as #includeEtc or
+// #calc, patch-group entries) are written out plainly by OpenFOAM (`postProcess -func 'writeObjects(U)'`) into a
+// scratch copy when OpenFOAM is installed. Throws
 // CouplingError naming the case and the problem: no such folder, no system/controlDict, no mesh, no U, a listed
-// time that is not there.
-std::vector<MeshSnapshot> read_openfoam_case(const std::filesystem::path& case_dir, const TimeSelection& which);
+// time that is not there, a directive with no OpenFOAM to expand it (naming the file and the fix).
+std::vector<MeshSnapshot> read_openfoam_case(const std::filesystem::path& case_dir, const TimeSelection& which,
+                                             const CaseTransform& transform = {}, CaseNotes* notes = nullptr);
 
 }  // namespace polyfloe::coupling

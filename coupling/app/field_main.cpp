@@ -1,5 +1,6 @@
 // polyfloe-field (also run as `polyfloe field ...`): OpenFOAM velocity -> ocean field files.
 // Exit codes: 0 done, 2 bad input (arguments, case, file), 1 anything else.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -49,11 +50,19 @@ Import options:
   --surface Z             the water surface's height in the case [m] (default: the top of the mesh)
   --max-nodes N           the most grid nodes (x * y * levels * times) to allocate (default 5e7: some 2.4 GB
                           in memory); a larger grid is refused with its size before anything is allocated
-  --times WHICH           auto (default: the latest time of a steady case, every time of a transient one),
-                          all, latest, a list T1,T2,... [s] of time directories, or a range A:B [s] (the
-                          time directories from A to B; A: or :B leave an end open)
+  --times WHICH           auto (default: the latest time of a steady case; every time of a transient one
+                          but t = 0, its initial condition, when later times exist), all, latest, a list
+                          T1,T2,... [s] of time directories, or a range A:B [s] (the time directories from
+                          A to B; A: or :B leave an end open)
+  --scale S|SX,SY,SZ      scale the mesh by S, or per axis [-] (> 0; default 1): e.g. 1000 to make a
+                          tutorial's millimetre-sized geometry metres
+  --rotate DEG            rotate the mesh and the velocities about the vertical z axis [degree],
+                          counter-clockwise seen from above (default 0); after --scale
+  --translate X,Y,Z       shift the mesh [m] (default 0,0,0); after --rotate. --bounds, --surface and the
+                          levels are in the transformed coordinates
+  --velocity-scale K      multiply the velocities by K [-] (default 1)
   --no-vtk                write no .pvd/.vtr series
-Compare options (also --times and --surface, as the import was made):
+Compare options (also --times, --surface and the transforms, as the import was made):
   --points N              random points per snapshot and level (default 20000)
   --seed S                random seed (default 1)
 
@@ -88,6 +97,7 @@ struct Args {
   fs::path output;
   coupling::GridSpec grid;
   coupling::TimeSelection times;
+  coupling::CaseTransform transform;
   bool vtk = true;
   long points = 20000;
   unsigned seed = 1;
@@ -149,6 +159,24 @@ Args parse(int argc, char** argv) {
         a.times.kind = K::listed;
         a.times.times = numbers(o, w);
       }
+    } else if (o == "--scale") {
+      const std::vector<double> k = numbers(o, value());
+      if ((k.size() != 1 && k.size() != 3) || std::any_of(k.begin(), k.end(), [](double x) { return !(x > 0.0) || x > 1e9; }))
+        throw UsageError("--scale: expected one factor S or three SX,SY,SZ, each in (0, 1e9]");
+      a.transform.scale = k.size() == 1 ? Eigen::Vector3d::Constant(k[0]) : Eigen::Vector3d(k[0], k[1], k[2]);
+    } else if (o == "--rotate") {
+      const std::vector<double> d = numbers(o, value());
+      if (d.size() != 1 || std::abs(d[0]) > 360.0) throw UsageError("--rotate: expected one angle in [-360, 360] degrees");
+      a.transform.rotate = d[0];
+    } else if (o == "--translate") {
+      const std::vector<double> d = numbers(o, value());
+      if (d.size() != 3 || std::any_of(d.begin(), d.end(), [](double x) { return std::abs(x) > 1e9; }))
+        throw UsageError("--translate: expected X,Y,Z [m], each within 1e9 m");
+      a.transform.translate = Eigen::Vector3d(d[0], d[1], d[2]);
+    } else if (o == "--velocity-scale") {
+      const std::vector<double> k = numbers(o, value());
+      if (k.size() != 1 || !(k[0] > 0.0) || k[0] > 1e6) throw UsageError("--velocity-scale: expected one factor in (0, 1e6]");
+      a.transform.velocity_scale = k[0];
     } else if (o == "--no-vtk") {
       a.vtk = false;
     } else if (o == "--points") {
@@ -211,6 +239,20 @@ double max_speed(const forcing::GridData& g) {
   return s;
 }
 
+// "0.5, 1, 1.5" (the first and last three of a long list).
+std::string times_list(const std::vector<double>& t) {
+  std::ostringstream os;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t.size() > 8 && i == 3) {
+      os << ", ... (" << t.size() << " times)";
+      i = t.size() - 4;
+      continue;
+    }
+    os << (i ? ", " : "") << t[i];
+  }
+  return os.str();
+}
+
 std::string axis_text(const std::vector<double>& a, const char* unit) {
   std::ostringstream os;
   os << a.size() << " from " << a.front() << " to " << a.back() << " " << unit;
@@ -233,7 +275,8 @@ int import(const Args& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path case_dir = a.positional[0];
   const bool steady = coupling::case_is_steady(case_dir);
-  const std::vector<coupling::MeshSnapshot> snaps = coupling::read_openfoam_case(case_dir, a.times);
+  coupling::CaseNotes notes;
+  const std::vector<coupling::MeshSnapshot> snaps = coupling::read_openfoam_case(case_dir, a.times, a.transform, &notes);
   io::FieldFile f = coupling::resample(snaps, a.grid, steady, fs::absolute(case_dir).lexically_normal().string());
   f.info.created_by = std::string("polyfloe field import ") + POLYFLOE_VERSION;
   io::write_field_file(a.output, f);
@@ -245,8 +288,22 @@ int import(const Args& a) {
   const auto& b = snaps.front().bounds();
   std::cout << "Imported " << case_dir.string() << " (" << snaps.front().cells() << " cells, the finest "
             << snaps.front().min_cell_size() << " m across, "
-            << (steady ? "steady" : "transient") << ", " << snaps.size() << " time(s)) into " << a.output.string()
-            << " in " << wall << " s:\n  mesh: x " << b[0] << " to " << b[1] << " m, y " << b[2] << " to " << b[3]
+            << (steady ? "steady" : "transient") << ", " << snaps.size() << " time(s)"
+            << (notes.layout.decomposed ? ", decomposed: read from " + std::to_string(notes.layout.processors) +
+                                              " processor folders"
+                                        : std::string())
+            << ") into " << a.output.string() << " in " << wall << " s:\n";
+  std::cout << "  times read: " << times_list(notes.read) << " s of the case's " << times_list(notes.layout.times)
+            << " s" << (notes.initial_skipped ? " (t = 0, the initial condition, left out; --times all keeps it)" : "")
+            << "\n";
+  if (notes.expanded)
+    std::cout << "  VTK's reader could not parse the velocity files (#includeEtc, patch groups, ...): read from a "
+                 "copy OpenFOAM wrote out plainly (postProcess -func 'writeObjects(U)')\n";
+  if (!a.transform.identity())
+    std::cout << "  transformed: scale " << a.transform.scale.transpose() << ", rotated " << a.transform.rotate
+              << " degrees about z, shifted by " << a.transform.translate.transpose() << " m, velocities x "
+              << a.transform.velocity_scale << "\n";
+  std::cout << "  mesh: x " << b[0] << " to " << b[1] << " m, y " << b[2] << " to " << b[3]
             << " m, z " << b[4] << " to " << b[5] << " m"
             << (snaps.front().depth_averaged() ? " (one cell through the depth: a 2-D case)" : "")
             << "; water surface at z = " << a.grid.surface.value_or(b[5])
@@ -285,7 +342,7 @@ int compare(const Args& a) {
   const fs::path case_dir = a.positional[0], file = a.positional[1];
   const io::FieldFile f = io::read_field_file(file);
   const forcing::GridData& g = f.grid;
-  auto snaps = std::make_shared<std::vector<coupling::MeshSnapshot>>(coupling::read_openfoam_case(case_dir, a.times));
+  auto snaps = std::make_shared<std::vector<coupling::MeshSnapshot>>(coupling::read_openfoam_case(case_dir, a.times, a.transform));
   if (snaps->size() != g.t.size())
     throw coupling::CouplingError(file.string() + " holds " + std::to_string(g.t.size()) + " snapshot(s), " +
                                   case_dir.string() + " " + std::to_string(snaps->size()) +

@@ -1,7 +1,9 @@
 // `polyfloe field` (coupling/app/field_main.cpp, run through polyfloe's git-style dispatch): bad arguments and
 // cases that are not OpenFOAM cases give exit code 2 with the option or folder named and no output file; `info`
-// describes a field file; a decomposed case is refused and a 3-D case's levels are heights below its surface. (The
-// import itself is tested end to end in tests/validation/test_strait_openfoam.cpp.)
+// describes a field file; a decomposed case is read from its processor folders, a 3-D case's levels are heights
+// below its surface, the case can be scaled, rotated and shifted as it is read, and files VTK's reader cannot parse
+// are written out plainly by OpenFOAM. (The import itself is tested end to end in
+// tests/validation/test_strait_openfoam.cpp and tests/validation/test_openfoam_tutorials.cpp.)
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -17,7 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 
 using Result = polyfloe::tsupport::CommandResult;
-Result field(const std::string& args) { return polyfloe::tsupport::run_polyfloe("field " + args); }
+Result field(const std::string& args, const std::string& env = "") {
+  return polyfloe::tsupport::run_polyfloe("field " + args, env);
+}
 
 class FieldCli : public ::testing::Test {
  protected:
@@ -90,17 +94,6 @@ namespace {
 
 // A decomposed case whose solution was never reconstructed: the case's own 0/U is the initial condition. Importing
 // it used to give that as the flow, with exit 0; now it is refused, naming reconstructPar.
-TEST_F(FieldCli, ADecomposedCaseIsRefusedNamingReconstructPar) {
-  const fs::path c = dir_ / "case";
-  for (const char* d : {"system", "constant/polyMesh", "0", "processor0/10", "processor1/10"})
-    fs::create_directories(c / d);
-  std::ofstream(c / "system" / "controlDict") << "application pisoFoam;\n";
-  for (const char* u : {"0/U", "processor0/10/U", "processor1/10/U"}) std::ofstream(c / u) << "// U\n";
-  expect_refused("import " + c.string() + " -o " + (dir_ / "out.h5").string(),
-                 "a decomposed case: its solution (t = 10 in processor*/) is not reconstructed, and the case's own U "
-                 "is only at t = 0 (the initial condition); reconstruct it first with OpenFOAM's `reconstructPar");
-}
-
 // Writes a 3-D box case (blockMesh): x, y in [0, 100] m, z in [0, 10] m (the seabed at 0, the surface at 10), 4 x 4
 // x 5 cells, and U = (z_c / 10 m) (1, 0, 0) m/s at the cell centres z_c = 1, 3, 5, 7, 9 m. Returns false without
 // OpenFOAM's blockMesh.
@@ -128,11 +121,11 @@ bool write_box_case(const fs::path& c) {
   return std::system(mesh.c_str()) == 0;
 }
 
-// The interior value of the field file at level index iz, node (ix, iy) of the first snapshot (h5py).
-double file_u(const fs::path& file, int iz, int ix, int iy) {
+// The value of the field file at level index iz, node (ix, iy) of snapshot it, component k (h5py).
+double file_u(const fs::path& file, int iz, int ix, int iy, int k = 0, int it = 0) {
   const std::string py = "/usr/bin/python3 -c \"import h5py; f = h5py.File('" + file.string() +
-                         "', 'r'); print('%.9f' % f['U'][0, " + std::to_string(iz) + ", " + std::to_string(iy) + ", " +
-                         std::to_string(ix) + ", 0])\"";
+                         "', 'r'); print('%.9f' % f['U'][" + std::to_string(it) + ", " + std::to_string(iz) + ", " +
+                         std::to_string(iy) + ", " + std::to_string(ix) + ", " + std::to_string(k) + "])\"";
   FILE* p = popen(py.c_str(), "r");
   double v = -1.0;
   if (p) {
@@ -223,14 +216,85 @@ TEST_F(FieldCli, CaseFoamNamesTheCaseAndVtkErrorsBecomeOneClearLine) {
   }
   text.replace(text.find("boundaryField {"), 15, "boundaryField {\n#includeEtc \"caseDicts/setConstraintTypes\"\n");
   std::ofstream(c / "0" / "U") << text;
-  r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --no-vtk");
+  // Without OpenFOAM: refused, VTK's own error turned into one line with the fix.
+  r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --no-vtk", "PATH=/nowhere");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("VTK's OpenFOAM reader said: Error reading line"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Unsupported directive includeEtc"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("foamDictionary -expand"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("install OpenFOAM (bash scripts/setup.sh), or write the field out plainly with "
+                          "OpenFOAM's `postProcess -fields '(U)' -func 'writeObjects(U)'`"), std::string::npos)
+      << r.output;
   EXPECT_EQ(r.output.find("\x1b"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("ERR|"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
+  // With OpenFOAM: read from a scratch copy OpenFOAM wrote out plainly, the same values, the case untouched.
+  r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --z -5 --no-vtk");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("read from a copy OpenFOAM wrote out plainly"), std::string::npos) << r.output;
+  EXPECT_NEAR(file_u(out, 0, 2, 2), 0.5, 1e-6);
+  std::ifstream again(c / "0" / "U");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(again), std::istreambuf_iterator<char>()), text);
+}
+
+// Runs OpenFOAM's decomposePar on the box case (2 processors, split in x) and makes the decomposed initial
+// condition the processors' solution at t = 10 s: what a solver run with -parallel leaves (the case's own 0/ holds
+// the initial condition, here set to rest). Returns false without OpenFOAM.
+bool decompose_box_case(const fs::path& c) {
+  std::ofstream(c / "system" / "decomposeParDict")
+      << "FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
+         "numberOfSubdomains 2;\nmethod simple;\ncoeffs { n (2 1 1); }\nsimpleCoeffs { n (2 1 1); delta 0.001; }\n";
+  const std::string cmd = "cd " + c.string() + " && WM_PROJECT_DIR=/usr/share/openfoam FOAM_ETC=/usr/share/openfoam/etc "
+                          "decomposePar > log.decomposePar 2>&1";
+  if (std::system(cmd.c_str()) != 0) return false;
+  for (const char* p : {"processor0", "processor1"}) fs::rename(c / p / "0", c / p / "10");
+  std::ofstream(c / "0" / "U") << "FoamFile { version 2.0; format ascii; class volVectorField; object U; }\n"
+                                  "dimensions [0 1 -1 0 0 0 0];\ninternalField uniform (0 0 0);\n"
+                                  "boundaryField { walls { type zeroGradient; } }\n";
+  return true;
+}
+
+// A decomposed case (decomposePar, a parallel run, not reconstructed) is read from its processor folders: the
+// solution, not the case's own 0/U (the initial condition), which used to be imported with exit 0. A processor that
+// lacks a time the others hold, or OpenFOAM's collated processors folder, is refused with the fix.
+TEST_F(FieldCli, ADecomposedCaseIsReadFromItsProcessorFolders) {
+  const fs::path c = dir_ / "box";
+  if (!write_box_case(c) || !decompose_box_case(c)) GTEST_SKIP() << "OpenFOAM is not installed";
+  const fs::path out = dir_ / "out.h5";
+  Result r = field("import " + c.string() + " -o " + out.string() + " --cell 25 --z -5,-3 --no-vtk");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("decomposed: read from 2 processor folders"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("times read: 10 s of the case's 10 s"), std::string::npos) << r.output;
+  // Both halves of the mesh (x = 25 m on processor0, 75 m on processor1) and the node on the cut (50 m).
+  for (const int ix : {1, 2, 3}) {
+    EXPECT_NEAR(file_u(out, 0, ix, 2), 0.5, 1e-6) << ix;
+    EXPECT_NEAR(file_u(out, 1, ix, 2), 0.7, 1e-6) << ix;
+  }
+  fs::remove(out);
+  fs::remove_all(c / "processor1" / "10");
+  expect_refused("import " + c.string() + " -o " + out.string(),
+                 "a decomposed case whose processor1/ has no U at t = 10 (processor0/ has it)");
+  fs::create_directories(c / "processors2");
+  expect_refused("import " + c.string() + " -o " + out.string(), "collated file handler (processors2/)");
+}
+
+// --scale, --rotate, --translate and --velocity-scale place a case as it is read: the box (x, y in [0, 100] m, z in
+// [0, 10] m, U = 0.1 z (1, 0, 0) m/s) scaled by 2, turned 90 degrees and shifted by (10, 0, -20) m lies in x in
+// [-190, 10] m, y in [0, 200] m, z in [-20, 0] m, and flows along +y at half the speed.
+TEST_F(FieldCli, TransformsPlaceTheCaseAsItIsRead) {
+  const fs::path c = dir_ / "box";
+  if (!write_box_case(c)) GTEST_SKIP() << "OpenFOAM's blockMesh is not installed";
+  const fs::path out = dir_ / "out.h5";
+  const Result r = field("import " + c.string() + " -o " + out.string() +
+                         " --cell 50 --z -10 --scale 2 --rotate 90 --translate 10,0,-20 --velocity-scale 0.5 --no-vtk");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("mesh: x -190 to 10 m, y 0 to 200 m, z -20 to 0 m"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("x: 5 from -190 to 10 m"), std::string::npos) << r.output;
+  // Level -10 m is z = 5 m of the original case: U = 0.5 m/s along x there, now 0.25 m/s along y.
+  EXPECT_NEAR(file_u(out, 0, 2, 2, 0), 0.0, 1e-6);
+  EXPECT_NEAR(file_u(out, 0, 2, 2, 1), 0.25, 1e-6);
+  fs::remove(out);
+  for (const char* bad : {"--scale 0", "--scale 1,2", "--rotate 400", "--translate 1,2", "--velocity-scale -1"})
+    expect_refused("import " + c.string() + " -o " + out.string() + " " + bad, std::string(bad).substr(0, 7));
 }
 
 }  // namespace

@@ -14,8 +14,10 @@ struct CommandResult {
 };
 
 // Runs `POLYFLOE_BINARY args` through the shell (args are shell words).
-inline CommandResult run_polyfloe(const std::string& args) {
-  const std::string cmd = std::string(POLYFLOE_BINARY) + " " + args + " 2>&1";
+// `env` (e.g. "PATH=/nowhere") sets variables for the command alone.
+inline CommandResult run_polyfloe(const std::string& args, const std::string& env = "") {
+  const std::string cmd = (env.empty() ? std::string() : "env " + env + " ") + std::string(POLYFLOE_BINARY) + " " +
+                          args + " 2>&1";
   CommandResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
