@@ -185,6 +185,7 @@ std::string field_spec_error(const FieldSpec& s) {
       if (!s.grid) return "the field file '" + s.path + "' is not loaded";
       if (std::string e = grid_data_error(*s.grid); !e.empty()) return s.path + ": " + e;
       if (!finite(s.no_water_velocity)) return "no_water_velocity must be finite";
+      if (!finite(s.offset) || !std::isfinite(s.time_offset)) return "offset and time_offset must be finite";
       return {};
     }
   }
@@ -203,7 +204,7 @@ std::shared_ptr<const VelocityField> make_field(const FieldSpec& s) {
     case FieldKind::time_series: return std::make_shared<TimeSeriesField>(s);
     case FieldKind::file:
       return std::make_shared<GriddedField>(
-          s.grid, GriddedFieldOptions{s.outside, s.no_water, s.no_water_velocity, s.path});
+          s.grid, GriddedFieldOptions{s.outside, s.no_water, s.no_water_velocity, s.path, s.offset, s.time_offset});
   }
   throw std::invalid_argument("unknown field kind");
 }

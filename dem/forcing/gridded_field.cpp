@@ -137,7 +137,7 @@ GriddedField::GriddedField(std::shared_ptr<const GridData> grid, GriddedFieldOpt
 
 void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2> out) const {
   const GridData& g = *grid_;
-  const TimeBracket tb = time_bracket(g.t, t, options_.time_outside, options_.source);
+  const TimeBracket tb = time_bracket(g.t, t + options_.time_offset, options_.time_outside, options_.source);
   const std::size_t t0 = tb.i;
   const double wt = tb.w;
   const bool two_times = wt > 0.0;
@@ -145,7 +145,7 @@ void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2
   const std::size_t dz = g.z.size() > 1 ? nxy : 0;
 
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const Vec3& p = points[k];
+    const Vec3 p(points[k].x() - options_.offset.x(), points[k].y() - options_.offset.y(), points[k].z());
     const bool inside = contains(g.x, p.x()) && contains(g.y, p.y());
     double u = 0.0, v = 0.0, wet = 0.0;
     if (inside) {
@@ -179,7 +179,9 @@ void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2
       continue;
     }
     std::ostringstream os;
-    os << options_.source << ": no water at (" << p.x() << ", " << p.y() << ", " << p.z() << ") m: ";
+    os << options_.source << ": no water at (" << points[k].x() << ", " << points[k].y() << ", " << p.z() << ") m";
+    if (options_.offset != Vec2::Zero()) os << " (the file's (" << p.x() << ", " << p.y() << ") m, offset applied)";
+    os << ": ";
     if (!inside)
       os << "outside the field's grid x [" << g.x.front() << ", " << g.x.back() << "], y [" << g.y.front() << ", "
          << g.y.back() << "] m";

@@ -42,6 +42,8 @@ struct GriddedFieldOptions {
   OutsideWater no_water = OutsideWater::error;      // outside the grid in x or y, or on land
   Vec2 no_water_velocity{0.0, 0.0};                 // [m/s] with no_water = velocity
   std::string source;                               // the file, for error messages
+  Vec2 offset{0.0, 0.0};     // where the grid's (0, 0) lies [m]: point p samples the grid at p - offset
+  double time_offset = 0.0;  // time t samples the snapshots at t + time_offset [s]
 };
 
 // Where t falls among strictly increasing snapshot times: the earlier snapshot and the weight of the next one (0

@@ -65,6 +65,8 @@ void read_file_field(MapReader& m, forcing::FieldSpec& s) {
   const bool has_velocity = m.vec2("no_water_velocity", s.no_water_velocity, "m/s");
   if (s.no_water == forcing::OutsideWater::velocity && !has_velocity)
     ctx.fail(m.self(), "no_water: velocity needs no_water_velocity: [u, v] [m/s]");
+  m.vec2("offset", s.offset, "m");                     // where the file's (0, 0) lies in the scene
+  m.number("time_offset", s.time_offset, any("s"));    // scene time 0 is the file's time_offset
 }
 
 // One field block: 'type' picks the kind and with it the keys that may follow.
@@ -224,10 +226,13 @@ void check_forcing(const Context& ctx, const Field& root, const Scene& s) {
     const bool file = f->kind == forcing::FieldKind::file && f->grid && f->grid->t.size() > 1;
     if (!series && !file) continue;
     const std::vector<double>& t = series ? f->times : f->grid->t;
-    if (t.front() > 0.0 || t.back() < s.time.duration)
+    const double shift = series ? 0.0 : f->time_offset;  // the run's [0, duration] is the file's [shift, ...]
+    if (t.front() > shift || t.back() < s.time.duration + shift)
       throw SceneError(ctx.file() + ": key '" + std::string(path) + (series ? ".times': the series" : ".path': the file's snapshots") +
                        " cover" + (series ? "s" : "") + " [" + fmt(t.front()) + ", " + fmt(t.back()) +
-                       "] s but the run spans [0, " + fmt(s.time.duration) + "] s with outside: error; " +
+                       "] s but the run spans [" + fmt(shift) + ", " + fmt(s.time.duration + shift) + "] s" +
+                       (shift != 0.0 ? " of the file's time (time_offset " + fmt(shift) + " s)" : "") +
+                       " with outside: error; " +
                        (series ? "extend the series" : "import more snapshots") + " or choose clamp or cyclic");
   }
 }

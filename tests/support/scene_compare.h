@@ -29,6 +29,8 @@ inline void expect_same_field(const forcing::FieldSpec& a, const forcing::FieldS
   EXPECT_EQ(a.path, b.path);
   EXPECT_EQ(a.no_water, b.no_water);
   EXPECT_EQ(a.no_water_velocity, b.no_water_velocity);
+  EXPECT_EQ(a.offset, b.offset);
+  EXPECT_EQ(a.time_offset, b.time_offset);
   EXPECT_EQ(a.grid != nullptr, b.grid != nullptr);
 }
 

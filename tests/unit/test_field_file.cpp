@@ -180,6 +180,21 @@ TEST_F(FieldFileTest, ASceneReadsItsFieldFileRelativeToItsFolder) {
   std::ofstream(dir_ / "out" / "scene.resolved.yaml") << resolved;
   scene::expect_same_settings(s, scene::read_scene(dir_ / "out" / "scene.resolved.yaml"));
   EXPECT_EQ(s.world.drift.ocean->at({1e6, 0, -1}, 0), forcing::Vec2(0.5, -0.25));  // off the grid
+
+  // Placed in the scene: the file's (0, 0) at (100, -20) m, the scene's t = 0 at the file's 100 s (a spin-up
+  // skipped): the scene's (115, -15) m at 600 s is the file's (15, 5) m at 700 s, as above.
+  std::ofstream(scene_file) << scene_with_field(
+      "{type: file, path: fields/f.h5, outside: cyclic, no_water: velocity, no_water_velocity: [0.5, -0.25], "
+      "offset: [100, -20], time_offset: 100}");
+  const scene::Scene placed = scene::read_scene(scene_file);
+  const forcing::Vec2 up = placed.world.drift.ocean->at({115, -15, -1}, 600);
+  EXPECT_NEAR(up.x(), 0.15 + 0.1, 1e-12);
+  EXPECT_NEAR(up.y(), 0.05 - 1, 1e-12);
+  EXPECT_EQ(placed.world.drift.ocean->at({15, 5, -1}, 600), forcing::Vec2(0.5, -0.25));  // off the placed grid
+  const std::string placed_yaml = scene::resolved_yaml(placed);
+  EXPECT_NE(placed_yaml.find("offset: [100, -20], time_offset: 100"), std::string::npos) << placed_yaml;
+  std::ofstream(dir_ / "out" / "scene.resolved.yaml") << placed_yaml;
+  scene::expect_same_settings(placed, scene::read_scene(dir_ / "out" / "scene.resolved.yaml"));
 }
 
 TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
@@ -205,11 +220,21 @@ TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
                                          "clamp or cyclic"),
             std::string::npos)
       << scene_error(scene_file);
+  // time_offset moves the run's span in the file's time.
+  std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: error, time_offset: 100}") +
+                                   "run: {duration: 550}\n";
+  EXPECT_NE(scene_error(scene_file).find("the file's snapshots cover [0, 600] s but the run spans [100, 650] s of the "
+                                         "file's time (time_offset 100 s) with outside: error"),
+            std::string::npos)
+      << scene_error(scene_file);
+  std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: error, offset: [1, .nan]}");
+  EXPECT_NE(scene_error(scene_file).find("forcing.ocean.field.offset"), std::string::npos) << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, outside: clamp}");
   EXPECT_NE(scene_error(scene_file).find("missing required key 'path'"), std::string::npos) << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, velocity: [1, 0]}");
   EXPECT_NE(scene_error(scene_file).find("unknown key 'forcing.ocean.field.velocity'; allowed in "
-                                         "'forcing.ocean.field': type, path, outside, no_water, no_water_velocity"),
+                                         "'forcing.ocean.field': type, path, outside, no_water, no_water_velocity, offset, "
+                                         "time_offset"),
             std::string::npos)
       << scene_error(scene_file);
 }
