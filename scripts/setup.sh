@@ -14,6 +14,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
   openfoam  # v1912: the of_cases (OpenFOAM flows that drive the ice; tests/validation/test_strait_openfoam.cpp)
+  openfoam-examples  # its tutorials: users' kinds of case (of_cases/tutorials, test_openfoam_tutorials.cpp)
 )
 # Optional groups, named on the command line.
 FUZZ_PACKAGES=(clang libclang-rt-dev)
