@@ -36,16 +36,16 @@ struct AxisHit {
 };
 
 // Where p falls on axis `a`: a direct index for uniform spacing (what the importer writes), else a binary search.
-AxisHit locate(const std::vector<double>& a, const GriddedField::AxisScale& scale, double p) {
+inline AxisHit locate(const std::vector<double>& a, const GriddedField::AxisScale& scale, double p) {
   if (a.size() < 2) return {};
   p = std::clamp(p, a.front(), a.back());
-  std::size_t i;
-  if (scale.uniform) {
-    i = std::min(static_cast<std::size_t>((p - a.front()) * scale.inv_h), a.size() - 2);
-  } else {
-    i = static_cast<std::size_t>(std::upper_bound(a.begin(), a.end(), p) - a.begin());
-    i = std::clamp<std::size_t>(i, 1, a.size() - 1) - 1;
+  if (scale.uniform) {  // one multiplication, no division
+    const double s = (p - a.front()) * scale.inv_h;
+    const std::size_t i = std::min(static_cast<std::size_t>(s), a.size() - 2);
+    return {i, std::clamp(s - static_cast<double>(i), 0.0, 1.0)};
   }
+  std::size_t i = static_cast<std::size_t>(std::upper_bound(a.begin(), a.end(), p) - a.begin());
+  i = std::clamp<std::size_t>(i, 1, a.size() - 1) - 1;
   return {i, std::clamp((p - a[i]) / (a[i + 1] - a[i]), 0.0, 1.0)};
 }
 
@@ -131,6 +131,24 @@ GriddedField::GriddedField(std::shared_ptr<const GridData> grid, GriddedFieldOpt
   sx_ = scale_of(grid_->x);
   sy_ = scale_of(grid_->y);
   sz_ = scale_of(grid_->z);
+  const GridData& g = *grid_;
+  const std::size_t nx = g.x.size(), ny = g.y.size(), nz = g.z.size(), nxy = nx * ny;
+  const std::size_t dz = nz > 1 ? nxy : 0;
+  if (nz == 1 && g.t.size() == 1 && nxy <= 10'000'000) {
+    uv_.resize(2 * nxy);
+    for (std::size_t n = 0; n < nxy; ++n) {
+      uv_[2 * n] = g.u[n];
+      uv_[2 * n + 1] = g.v[n];
+    }
+  }
+  all_wet_.assign(g.wet.size(), 0);
+  for (std::size_t iz = 0; iz < (nz > 1 ? nz - 1 : 1); ++iz)
+    for (std::size_t iy = 0; iy + 1 < ny; ++iy)
+      for (std::size_t ix = 0; ix + 1 < nx; ++ix) {
+        const std::size_t n = iz * nxy + iy * nx + ix;
+        all_wet_[n] = g.wet[n] && g.wet[n + 1] && g.wet[n + nx] && g.wet[n + nx + 1] && g.wet[n + dz] &&
+                      g.wet[n + dz + 1] && g.wet[n + dz + nx] && g.wet[n + dz + nx + 1];
+      }
   if (!std::isfinite(options_.no_water_velocity.x()) || !std::isfinite(options_.no_water_velocity.y()))
     throw std::invalid_argument("gridded field: the no-water velocity is not finite");
 }
@@ -143,9 +161,31 @@ void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2
   const bool two_times = wt > 0.0;
   const std::size_t nx = g.x.size(), nxy = nx * g.y.size(), per_t = g.nodes_per_snapshot();
   const std::size_t dz = g.z.size() > 1 ? nxy : 0;
+  // The common case, a steady depth-averaged field on a uniform grid (a 2-D OpenFOAM case): bilinear in the water,
+  // the general loop below for the rest (land nearby, off the grid).
+  const bool plain = dz == 0 && !two_times && sx_.uniform && sy_.uniform && !uv_.empty();
+  const double* uv = uv_.data();
+  const double x0 = g.x.front(), y0 = g.y.front();
+  const double sx_max = static_cast<double>(nx - 1), sy_max = static_cast<double>(g.y.size() - 1);
 
   for (std::size_t k = 0; k < points.size(); ++k) {
     const Vec3 p(points[k].x() - options_.offset.x(), points[k].y() - options_.offset.y(), points[k].z());
+    if (plain) {
+      const double sx = (p.x() - x0) * sx_.inv_h, sy = (p.y() - y0) * sy_.inv_h;
+      if (sx >= 0.0 && sy >= 0.0 && sx <= sx_max && sy <= sy_max) {
+        const std::size_t ix = std::min(static_cast<std::size_t>(sx), nx - 2);
+        const std::size_t iy = std::min(static_cast<std::size_t>(sy), g.y.size() - 2);
+        const std::size_t n = iy * nx + ix;
+        if (all_wet_[n]) {
+          const double wx = sx - static_cast<double>(ix), wy = sy - static_cast<double>(iy);
+          const double a = (1.0 - wx) * (1.0 - wy), b = wx * (1.0 - wy), c = (1.0 - wx) * wy, d = wx * wy;
+          const double* q = uv + 2 * n;
+          const double* r = q + 2 * nx;
+          out[k] = Vec2{a * q[0] + b * q[2] + c * r[0] + d * r[2], a * q[1] + b * q[3] + c * r[1] + d * r[3]};
+          continue;
+        }
+      }
+    }
     const bool inside = contains(g.x, p.x()) && contains(g.y, p.y());
     double u = 0.0, v = 0.0, wet = 0.0;
     if (inside) {
@@ -154,6 +194,24 @@ void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2
       // The 8 corners (4 when the field is the same at every depth: dz = 0 and the z weight is 0).
       const std::size_t offset[8] = {0, 1, nx, nx + 1, dz, dz + 1, dz + nx, dz + nx + 1};
       const double wx[2] = {1.0 - hx.w, hx.w}, wy[2] = {1.0 - hy.w, hy.w}, wz[2] = {1.0 - hz.w, hz.w};
+      if (all_wet_[base]) {
+        // Every corner is water: the same sums in the same order, without the land tests.
+        const std::size_t i0 = t0 * per_t + base;
+        const int corners = dz ? 8 : 4;
+        for (int c = 0; c < corners; ++c) {
+          const double w = wx[c & 1] * wy[(c >> 1) & 1] * wz[c >> 2];
+          const std::size_t i = i0 + offset[c];
+          double cu = g.u[i], cv = g.v[i];
+          if (two_times) {
+            cu += wt * (g.u[i + per_t] - cu);
+            cv += wt * (g.v[i + per_t] - cv);
+          }
+          u += w * cu;
+          v += w * cv;
+        }
+        out[k] = Vec2{u, v};
+        continue;
+      }
       for (int c = 0; c < 8; ++c) {
         const double w = wx[c & 1] * wy[(c >> 1) & 1] * wz[c >> 2];
         if (w == 0.0) continue;

@@ -76,6 +76,11 @@ class GriddedField final : public VelocityField {
   std::shared_ptr<const GridData> grid_;
   GriddedFieldOptions options_;
   AxisScale sx_, sy_, sz_;
+  // Per grid cell, indexed by its lowest node (z, y, x): 1 when every corner the interpolation reads is water, so
+  // sampling there needs no per-corner land test (most of the water, away from the coast).
+  std::vector<std::uint8_t> all_wet_;
+  // A steady single-level field's (u, v) side by side per node: one cache line holds both of a corner's values.
+  std::vector<double> uv_;
 };
 
 }  // namespace polyfloe::forcing

@@ -174,6 +174,46 @@ TEST(GriddedField, LandNodesCountAsZeroVelocityAndOnlyAllDryIsNoWater) {
   EXPECT_EQ(fallback.at({std::nan(""), 20, -1}, 0), Vec2(0.25, -0.5));  // a NaN point is nowhere: no NaN out
 }
 
+// A steady one-level field on a uniform grid (a depth-averaged OpenFOAM case) has its own fast loop; cells that touch
+// land and points off the grid take the general one. Both against the bilinear formula written out, land corners
+// counting zero, at random points over a grid with scattered land, and at the placed grid (offset).
+TEST(GriddedField, TheSteadyOneLevelLoopIsTheBilinearFormula) {
+  GridData g = make_grid(axis(0, 90, 10), axis(-20, 70, 10), {-1.0}, {0.0}, [](const Vec3& p, double) {
+    return Vec2{std::sin(0.05 * p.x()) + 0.01 * p.y(), std::cos(0.03 * p.y()) - 0.02 * p.x()};
+  });
+  std::mt19937_64 rng(11);
+  for (int k = 0; k < 12; ++k) g.wet[std::uniform_int_distribution<std::size_t>(0, 99)(rng)] = 0;
+  GriddedFieldOptions o;
+  o.no_water = OutsideWater::velocity;
+  o.no_water_velocity = {7.0, 7.0};
+  o.offset = {1000.0, -500.0};
+  const GriddedField f = field_of(g, o);
+  std::uniform_real_distribution<double> ux(-5.0, 95.0), uy(-25.0, 75.0);
+  int fallback = 0;
+  for (int k = 0; k < 5000; ++k) {
+    const double x = ux(rng), y = uy(rng);
+    Vec2 want{7.0, 7.0};
+    if (x >= 0.0 && x <= 90.0 && y >= -20.0 && y <= 70.0) {
+      const std::size_t ix = std::min<std::size_t>(static_cast<std::size_t>(x / 10.0), 8);
+      const std::size_t iy = std::min<std::size_t>(static_cast<std::size_t>((y + 20.0) / 10.0), 8);
+      const double wx = x / 10.0 - static_cast<double>(ix), wy = (y + 20.0) / 10.0 - static_cast<double>(iy);
+      Vec2 sum{0.0, 0.0};
+      double wet = 0.0;
+      for (int c = 0; c < 4; ++c) {
+        const std::size_t n = g.index(0, 0, iy + (c >> 1), ix + (c & 1));
+        const double w = ((c & 1) ? wx : 1.0 - wx) * ((c >> 1) ? wy : 1.0 - wy);
+        if (!g.wet[n] || w == 0.0) continue;
+        wet += w;
+        sum += w * Vec2(g.u[n], g.v[n]);
+      }
+      if (wet > 1e-9) want = sum;
+    }
+    fallback += want == Vec2(7.0, 7.0);
+    EXPECT_LT((f.at({x + 1000.0, y - 500.0, -1.0}, 0.0) - want).norm(), 1e-13) << x << ", " << y;
+  }
+  EXPECT_GT(fallback, 100);  // some points off the grid or on land took the fallback
+}
+
 TEST(GriddedField, GridErrorsNameTheProblem) {
   const auto ok = [] { return make_grid(axis(0, 10, 3), axis(0, 10, 4), {-2.0, -1.0}, {0.0, 1.0}, multilinear); };
   EXPECT_EQ(grid_data_error(ok()), "");
