@@ -194,29 +194,12 @@ void GriddedField::sample(double t, std::span<const Vec3> points, std::span<Vec2
       // The 8 corners (4 when the field is the same at every depth: dz = 0 and the z weight is 0).
       const std::size_t offset[8] = {0, 1, nx, nx + 1, dz, dz + 1, dz + nx, dz + nx + 1};
       const double wx[2] = {1.0 - hx.w, hx.w}, wy[2] = {1.0 - hy.w, hy.w}, wz[2] = {1.0 - hz.w, hz.w};
-      if (all_wet_[base]) {
-        // Every corner is water: the same sums in the same order, without the land tests.
-        const std::size_t i0 = t0 * per_t + base;
-        const int corners = dz ? 8 : 4;
-        for (int c = 0; c < corners; ++c) {
-          const double w = wx[c & 1] * wy[(c >> 1) & 1] * wz[c >> 2];
-          const std::size_t i = i0 + offset[c];
-          double cu = g.u[i], cv = g.v[i];
-          if (two_times) {
-            cu += wt * (g.u[i + per_t] - cu);
-            cv += wt * (g.v[i + per_t] - cv);
-          }
-          u += w * cu;
-          v += w * cv;
-        }
-        out[k] = Vec2{u, v};
-        continue;
-      }
-      for (int c = 0; c < 8; ++c) {
+      // Where every corner is water (most cells) the land tests are skipped: the same sums in the same order.
+      const bool all_wet = all_wet_[base];
+      for (int c = 0; c < (dz ? 8 : 4); ++c) {
         const double w = wx[c & 1] * wy[(c >> 1) & 1] * wz[c >> 2];
-        if (w == 0.0) continue;
         const std::size_t n = base + offset[c];
-        if (!g.wet[n]) continue;  // land: zero velocity, and it does not count as water
+        if (!all_wet && (w == 0.0 || !g.wet[n])) continue;  // land: zero velocity, and it does not count as water
         wet += w;
         const std::size_t i0 = t0 * per_t + n;
         double cu = g.u[i0], cv = g.v[i0];
