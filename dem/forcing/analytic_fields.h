@@ -49,6 +49,7 @@ struct FieldSpec {
   Vec2 no_water_velocity{0.0, 0.0};                       // file: the velocity there with no_water = velocity [m/s]
   Vec2 offset{0.0, 0.0};  // file: where the file's (0, 0) lies in the scene [m]: scene point p samples p - offset
   double time_offset = 0.0;  // file: scene time t samples the file at t + time_offset [s] (skips a spin-up)
+  bool land_walls = false;   // file: the file's land becomes fixed walls (land: walls); floe fields avoid it anyway
 
   static FieldSpec uniform(const Vec2& v) {
     FieldSpec s;

@@ -1,6 +1,7 @@
 #include "forcing/gridded_field.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -89,6 +90,52 @@ std::string grid_data_error(const GridData& g) {
     }
   if (std::find(g.wet.begin(), g.wet.end(), std::uint8_t{1}) == g.wet.end()) return "no node is wet";
   return {};
+}
+
+std::vector<LandRectangle> land_rectangles(const GridData& g) {
+  const std::size_t nx = g.x.size(), ny = g.y.size();
+  std::size_t iz = 0;
+  for (std::size_t k = 1; k < g.z.size(); ++k)
+    if (std::abs(g.z[k]) < std::abs(g.z[iz])) iz = k;
+  // A node's square: from half-way to its neighbours (half a spacing beyond the grid's first and last nodes).
+  auto edge = [](const std::vector<double>& a, std::size_t i) {  // the boundary below node i (i = a.size(): above the last)
+    if (i == 0) return a[0] - 0.5 * (a[1] - a[0]);
+    if (i == a.size()) return a.back() + 0.5 * (a.back() - a[a.size() - 2]);
+    return 0.5 * (a[i - 1] + a[i]);
+  };
+  struct Open {
+    std::size_t y0;
+    bool seen;
+  };
+  std::map<std::pair<std::size_t, std::size_t>, Open> open;  // run [x0, x1) -> the row it started in
+  std::vector<LandRectangle> out;
+  auto close = [&](std::pair<std::size_t, std::size_t> run, std::size_t y0, std::size_t y1) {
+    out.push_back({Vec2(edge(g.x, run.first), edge(g.y, y0)), Vec2(edge(g.x, run.second), edge(g.y, y1))});
+  };
+  for (std::size_t iy = 0; iy <= ny; ++iy) {
+    for (auto& [run, o] : open) o.seen = false;
+    if (iy < ny)
+      for (std::size_t ix = 0; ix < nx;) {
+        if (g.wet[g.index(0, iz, iy, ix)]) {
+          ++ix;
+          continue;
+        }
+        std::size_t end = ix;
+        while (end < nx && !g.wet[g.index(0, iz, iy, end)]) ++end;
+        const auto [it, fresh] = open.try_emplace({ix, end}, Open{iy, true});
+        it->second.seen = true;
+        ix = end;
+      }
+    for (auto it = open.begin(); it != open.end();) {
+      if (it->second.seen) {
+        ++it;
+        continue;
+      }
+      close(it->first, it->second.y0, iy);
+      it = open.erase(it);
+    }
+  }
+  return out;
 }
 
 TimeBracket time_bracket(std::span<const double> times, double t, TimeBoundary outside, const std::string& source) {

@@ -37,6 +37,15 @@ inline constexpr double kMaxFieldSpeed = 1e3;
 // "u has 10 values, expected 12 (t x z x y x x)", "u is not finite at node (t 0, z 1, y 3, x 2)").
 std::string grid_data_error(const GridData& g);
 
+// The land of a grid's surface level (the level nearest z = 0) as axis-aligned rectangles [m] in the grid's
+// coordinates: each dry node stands for the square of one spacing around it (the coast half-way between a wet and a
+// dry node, within half a spacing of the fluid mesh's wall), squares merged into runs along x and runs of the same
+// extent into rectangles along y. Convex pieces that tile the land without overlapping.
+struct LandRectangle {
+  Vec2 lo, hi;
+};
+std::vector<LandRectangle> land_rectangles(const GridData& g);
+
 struct GriddedFieldOptions {
   TimeBoundary time_outside = TimeBoundary::clamp;  // beyond [t.front(), t.back()]
   OutsideWater no_water = OutsideWater::error;      // outside the grid in x or y, or on land

@@ -13,6 +13,7 @@
 
 #include "contact/broad_phase.h"
 #include "forcing/drift.h"
+#include "forcing/gridded_field.h"
 #include "geometry/space_order.h"
 #include "scene/body_ids.h"
 #include "scene/channel.h"
@@ -277,6 +278,38 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     }
   }
 
+  // The ocean field file's land: fixed walls (land: walls), as thick as the thickest floe; without them, an obstacle
+  // only for the floe field, which never places floes on land.
+  std::vector<std::vector<Vec2>> land;
+  if (const forcing::FieldSpec& f = scene.ocean_field; f.kind == forcing::FieldKind::file && f.grid) {
+    const std::string source = "the land of " + f.path;
+    for (const forcing::LandRectangle& r : forcing::land_rectangles(*f.grid)) {
+      const Vec2 lo = r.lo + f.offset, hi = r.hi + f.offset;
+      const std::vector<Vec2> box{lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+      if (!f.land_walls) {
+        land.push_back(box);
+        continue;
+      }
+      Vec2 centre{0.0, 0.0};
+      auto shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(box, &centre));
+      PlacedBody p = placed(source + " (land: walls)", *shape, centre, 0.0, false);
+      for (const PlacedBody& q : bodies)
+        if (q.dynamic && overlapping(p, q))
+          throw SceneError(q.source + ": lies on " + source + " (the wall [" + std::to_string(lo.x()) + ", " +
+                           std::to_string(hi.x()) + "] x [" + std::to_string(lo.y()) + ", " + std::to_string(hi.y()) +
+                           "] m); move it into the water");
+      bodies.push_back(std::move(p));
+      BodyDesc desc;
+      desc.id = next++;
+      desc.shape = shape;
+      desc.position = centre;
+      desc.thickness = max_thickness;
+      desc.density = scene.ice_density;
+      desc.motion = Motion::fixed;
+      add(world, desc, source);
+    }
+  }
+
   // The ice sheet's cells: touching each other, overlapping nothing placed above.
   if (const auto& sheet = scene.ice_sheet) {
     const std::string where = sheet->source.where.empty() ? "ice_sheet" : sheet->source.where;
@@ -329,8 +362,9 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
   // Generated floes, clear of everything above.
   if (scene.floe_field) {
     std::vector<std::vector<Vec2>> obstacles;
-    obstacles.reserve(bodies.size());
+    obstacles.reserve(bodies.size() + land.size());
     for (const PlacedBody& p : bodies) obstacles.push_back(p.vertices);
+    obstacles.insert(obstacles.end(), land.begin(), land.end());
     const FloeField field = generate_floe_field(*scene.floe_field, scene.ice_density, next, obstacles);
     const std::string where = scene.floe_field->source.where.empty() ? "floe_field" : scene.floe_field->source.where;
     // Added in space order (the World's own, geometry/space_order.h, on cells of 4 x the floes' mean equivalent

@@ -67,6 +67,7 @@ void read_file_field(MapReader& m, forcing::FieldSpec& s) {
     ctx.fail(m.self(), "no_water: velocity needs no_water_velocity: [u, v] [m/s]");
   m.vec2("offset", s.offset, "m");                     // where the file's (0, 0) lies in the scene
   m.number("time_offset", s.time_offset, any("s"));    // scene time 0 is the file's time_offset
+  m.choice("land", s.land_walls, {{"none", false}, {"walls", true}});
 }
 
 // One field block: 'type' picks the kind and with it the keys that may follow.

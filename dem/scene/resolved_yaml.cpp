@@ -49,7 +49,8 @@ std::string field_yaml(const forcing::FieldSpec& f) {
       o << ", path: " << quoted(f.path) << ", outside: " << forcing::to_string(f.outside)
         << ", no_water: " << forcing::to_string(f.no_water);
       if (f.no_water == forcing::OutsideWater::velocity) o << ", no_water_velocity: " << fmt(f.no_water_velocity);
-      o << ", offset: " << fmt(f.offset) << ", time_offset: " << fmt(f.time_offset);
+      o << ", offset: " << fmt(f.offset) << ", time_offset: " << fmt(f.time_offset)
+        << ", land: " << (f.land_walls ? "walls" : "none");
       break;
   }
   o << "}";

@@ -134,6 +134,7 @@ BodySpec read_body(MapReader m) {
   if (shapes != 1)
     ctx.fail(m.self(), shapes == 0 ? "missing the shape: give one of 'polygon', 'regular' or 'rectangle'"
                                    : "give only one of 'polygon', 'regular' or 'rectangle'");
+  const bool given_polygon = m.has("polygon");
   if (auto f = m.take("polygon")) b.polygon = to_polygon(ctx, *f);
   {
     MapReader r = m.block("regular");
@@ -166,6 +167,25 @@ BodySpec read_body(MapReader m) {
                                " (width and height must be within a factor 1e9 of each other, each in [1e-60, 1e60] m)");
     }
     r.finish();
+  }
+  // coordinates: world keeps a polygon where its vertices are in the scene (a coastline or a CFD wall copied as
+  // it is): the body goes where the polygon's centroid is, unrotated.
+  bool world_frame = false;
+  if (const auto fc = m.take("coordinates")) {
+    const std::string c = fc->value.IsScalar() ? fc->value.Scalar() : std::string();
+    if (c != "body" && c != "world") ctx.fail(*fc, "expected body or world, got " + describe(fc->value));
+    world_frame = c == "world";
+    if (world_frame && !given_polygon)
+      ctx.fail(*fc, "coordinates: world places a 'polygon' given in scene coordinates; 'regular' and 'rectangle' "
+                    "are centred shapes: give their 'position'");
+    for (const char* k : {"position", "yaw", "yaw_deg"})
+      if (world_frame && m.has(k))
+        ctx.fail(*fc, std::string("coordinates: world takes the body's place from its polygon: remove '") + k + "'");
+  }
+  if (world_frame) {
+    Vec2 centre{0.0, 0.0};
+    (void)geometry::ConvexPolygon::from_vertices(b.polygon, &centre);
+    b.position = centre;
   }
   m.vec2("position", b.position, "m");
   if (m.has("yaw") && m.has("yaw_deg")) ctx.fail(m.self(), "give only one of 'yaw' [rad] and 'yaw_deg' [deg]");

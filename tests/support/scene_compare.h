@@ -31,6 +31,7 @@ inline void expect_same_field(const forcing::FieldSpec& a, const forcing::FieldS
   EXPECT_EQ(a.no_water_velocity, b.no_water_velocity);
   EXPECT_EQ(a.offset, b.offset);
   EXPECT_EQ(a.time_offset, b.time_offset);
+  EXPECT_EQ(a.land_walls, b.land_walls);
   EXPECT_EQ(a.grid != nullptr, b.grid != nullptr);
 }
 

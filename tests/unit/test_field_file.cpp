@@ -197,6 +197,49 @@ TEST_F(FieldFileTest, ASceneReadsItsFieldFileRelativeToItsFolder) {
   scene::expect_same_settings(placed, scene::read_scene(dir_ / "out" / "scene.resolved.yaml"));
 }
 
+// land: walls makes the file's land (the surface level's dry nodes, here x = 30 m, y = 20 m: the square [25, 35] x
+// [15, 25] m, and with offset [100, 0] m at [125, 135] x [15, 25] m) a fixed wall; a floe field keeps off the land
+// whether or not it is a wall; an explicit floe on it is refused, naming the land and the floe.
+TEST_F(FieldFileTest, TheFilesLandBecomesWallsAndFloeFieldsKeepOffIt) {
+  io::write_field_file(dir_ / "f.h5", sample_file());
+  const fs::path scene_file = dir_ / "s.yaml";
+  const std::string field = "{type: file, path: f.h5, outside: clamp, no_water: velocity, no_water_velocity: [0, 0], "
+                            "offset: [100, 0]";
+  std::ofstream(scene_file) << "name: f\nforcing:\n  ocean:\n    field: " + field +
+                                   ", land: walls}\nfloes:\n  - {rectangle: {width: 2, height: 2}, position: [105, 5]}\n";
+  const dynamics::World w = scene::build_world(scene::read_scene(scene_file));
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w.motion(1), dynamics::Motion::fixed);
+  std::vector<forcing::Vec2> v(w.world_vertices(1).begin(), w.world_vertices(1).end());
+  ASSERT_EQ(v.size(), 4u);
+  forcing::Vec2 lo = v[0], hi = v[0];
+  for (const forcing::Vec2& p : v) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  EXPECT_LT((lo - forcing::Vec2(125, 15)).norm(), 1e-9);
+  EXPECT_LT((hi - forcing::Vec2(135, 25)).norm(), 1e-9);
+  // A floe field over the whole grid, land included: no floe overlaps the land square, with or without walls.
+  for (const char* land : {"walls", "none"}) {
+    std::ofstream(scene_file) << "name: f\nforcing:\n  ocean:\n    field: " + field + ", land: " + land +
+                                     "}\nfloe_field: {region: [96, -4, 134, 24], concentration: 0.3, size: {min: 1, "
+                                     "max: 3}, seed: 2}\n";
+    const dynamics::World fw = scene::build_world(scene::read_scene(scene_file));
+    int floes = 0;
+    for (int i = 0; i < static_cast<int>(fw.size()); ++i) {
+      if (fw.motion(i) != dynamics::Motion::dynamic) continue;
+      ++floes;
+      for (const forcing::Vec2& p : fw.world_vertices(i))
+        EXPECT_FALSE(p.x() > 125 + 1e-9 && p.y() > 15 + 1e-9) << land << ": floe " << i << " on the land";
+    }
+    EXPECT_GT(floes, 20) << land;
+  }
+  std::ofstream(scene_file) << "name: f\nforcing:\n  ocean:\n    field: " + field +
+                                   ", land: walls}\nfloes:\n  - {rectangle: {width: 2, height: 2}, position: [129, 19]}\n";
+  const std::string e = scene::error_of([&] { (void)scene::build_world(scene::read_scene(scene_file)); });
+  EXPECT_NE(e.find("(floes.0): lies on the land of " + (dir_ / "f.h5").string()), std::string::npos) << e;
+  EXPECT_NE(e.find("move it into the water"), std::string::npos) << e;
+  std::ofstream(scene_file) << "name: f\nforcing:\n  ocean:\n    field: " + field + ", land: island}\n";
+  EXPECT_NE(scene_error(scene_file).find("forcing.ocean.field.land"), std::string::npos) << scene_error(scene_file);
+}
+
 TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
   io::write_field_file(dir_ / "f.h5", sample_file());
   const fs::path scene_file = dir_ / "s.yaml";
@@ -234,7 +277,7 @@ TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, velocity: [1, 0]}");
   EXPECT_NE(scene_error(scene_file).find("unknown key 'forcing.ocean.field.velocity'; allowed in "
                                          "'forcing.ocean.field': type, path, outside, no_water, no_water_velocity, offset, "
-                                         "time_offset"),
+                                         "time_offset, land"),
             std::string::npos)
       << scene_error(scene_file);
 }

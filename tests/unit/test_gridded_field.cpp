@@ -214,6 +214,40 @@ TEST(GriddedField, TheSteadyOneLevelLoopIsTheBilinearFormula) {
   EXPECT_GT(fallback, 100);  // some points off the grid or on land took the fallback
 }
 
+// Land as convex pieces: the rectangles tile the dry nodes' squares (each node's square half a spacing either side)
+// exactly: every dry node's square centre lies in exactly one rectangle, no wet node's does, and the areas add up.
+// The mask is the surface level's (nearest z = 0); a deeper level's land does not count.
+TEST(GriddedField, LandRectanglesTileTheDryNodesSquares) {
+  GridData g = make_grid(axis(0, 110, 12), axis(-50, 40, 10), {-3.0, -0.5}, {0.0}, [](const Vec3&, double) {
+    return Vec2{1.0, 0.0};
+  });
+  std::mt19937_64 rng(3);
+  std::size_t dry = 0;
+  for (std::size_t iy = 0; iy < 10; ++iy)
+    for (std::size_t ix = 0; ix < 12; ++ix) {
+      // A coast along a diagonal, a rectangular island and scattered rocks; the deeper level all dry.
+      const bool land = ix + iy < 6 || (ix >= 7 && ix <= 9 && iy >= 4 && iy <= 6) || rng() % 9 == 0;
+      g.wet[g.index(0, 1, iy, ix)] = land ? 0 : 1;
+      g.wet[g.index(0, 0, iy, ix)] = 0;
+      dry += land;
+    }
+  const std::vector<LandRectangle> rects = land_rectangles(g);
+  double area = 0.0;
+  for (const LandRectangle& r : rects) area += (r.hi - r.lo).prod();
+  EXPECT_NEAR(area, static_cast<double>(dry) * 100.0, 1e-9);
+  for (std::size_t iy = 0; iy < 10; ++iy)
+    for (std::size_t ix = 0; ix < 12; ++ix) {
+      const Vec2 c{g.x[ix], g.y[iy]};
+      int in = 0;
+      for (const LandRectangle& r : rects) in += (c.array() > r.lo.array()).all() && (c.array() < r.hi.array()).all();
+      EXPECT_EQ(in, g.wet[g.index(0, 1, iy, ix)] ? 0 : 1) << ix << ", " << iy;
+    }
+  // The edges: half a spacing beyond the grid's first and last nodes.
+  EXPECT_NEAR(rects.front().lo.x(), -5.0, 1e-12);
+  EXPECT_NEAR(rects.front().lo.y(), -55.0, 1e-12);
+  EXPECT_LT(rects.size(), dry);  // merged
+}
+
 TEST(GriddedField, GridErrorsNameTheProblem) {
   const auto ok = [] { return make_grid(axis(0, 10, 3), axis(0, 10, 4), {-2.0, -1.0}, {0.0, 1.0}, multilinear); };
   EXPECT_EQ(grid_data_error(ok()), "");

@@ -178,6 +178,43 @@ TEST(SceneReader, ExplicitBodyKeys) {
   EXPECT_EQ(s.bodies[1].source.where, "b.yaml:12:5");
 }
 
+// coordinates: world keeps a polygon where its vertices are: the body goes to the polygon's area centroid (a
+// triangle's: the vertices' mean), so its outline lands on the given vertices. Refused with position or yaw, or for
+// a centred shape.
+TEST(SceneReader, APolygonInWorldCoordinatesStaysWhereItIs) {
+  const Scene s = parse_scene(
+      "floes:\n"
+      "  - polygon: [[100, 0], [130, 0], [100, 30]]\n"
+      "    coordinates: world\n"
+      "    motion: fixed\n"
+      "  - polygon: [[0, 0], [4, 0], [0, 3]]\n"
+      "    coordinates: body\n"
+      "    position: [50, 50]\n",
+      "w.yaml", {});
+  EXPECT_LT((s.bodies[0].position - Vec2(110, 10)).norm(), 1e-12);
+  EXPECT_EQ(s.bodies[1].position, Vec2(50, 50));
+  const dynamics::World w = build_world(s);
+  std::vector<Vec2> v(w.world_vertices(0).begin(), w.world_vertices(0).end());
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_LT((v[0] - Vec2(100, 0)).norm(), 1e-12);
+  EXPECT_LT((v[1] - Vec2(130, 0)).norm(), 1e-12);
+  EXPECT_LT((v[2] - Vec2(100, 30)).norm(), 1e-12);
+  // Read back from the resolved scene (body coordinates, the centroid as position): the same body.
+  expect_same_settings(s, parse_scene(resolved_yaml(s), "r.yaml", {}));
+  for (const char* extra : {"    position: [1, 2]\n", "    yaw: 0.5\n", "    yaw_deg: 5\n"})
+    EXPECT_NE(parse_error("floes:\n  - polygon: [[0, 0], [4, 0], [0, 3]]\n    coordinates: world\n" +
+                          std::string(extra))
+                  .find("coordinates: world takes the body's place from its polygon: remove"),
+              std::string::npos)
+        << extra;
+  EXPECT_NE(parse_error("floes:\n  - regular: {sides: 5, radius: 2}\n    coordinates: world\n")
+                .find("'regular' and 'rectangle' are centred shapes"),
+            std::string::npos);
+  EXPECT_NE(parse_error("floes:\n  - polygon: [[0, 0], [4, 0], [0, 3]]\n    coordinates: global\n")
+                .find("expected body or world"),
+            std::string::npos);
+}
+
 TEST(SceneReader, AutoAndNumbers) {
   const Scene s = parse_scene(std::string(kOneFloe) +
                                   "run: {dt: 1.0e-4, reference_speed: +2.5, steps_per_contact: 50}\n"
