@@ -254,27 +254,32 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
   if (scene.ice_sheet) max_thickness = std::max(max_thickness, scene.ice_sheet->thickness);
   if (!(max_thickness > 0.0)) max_thickness = 1.0;
 
-  // Channel walls: fixed, as thick as the thickest floe (their mass never enters the dynamics).
+  // A fixed wall (world-frame vertices), as thick as the thickest floe (its mass never enters the dynamics); a
+  // dynamic body placed before that overlaps it is an error, in `overlap_message(that body)`'s words.
+  auto add_wall = [&](const std::vector<Vec2>& vertices, const std::string& source, const auto& overlap_message) {
+    Vec2 centre{0.0, 0.0};
+    auto shape =
+        std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(vertices, &centre));
+    PlacedBody p = placed(source, *shape, centre, 0.0, false);
+    for (const PlacedBody& q : bodies)
+      if (q.dynamic && overlapping(p, q)) throw SceneError(overlap_message(q));
+    bodies.push_back(std::move(p));
+    BodyDesc desc;
+    desc.id = next++;
+    desc.shape = shape;
+    desc.position = centre;
+    desc.thickness = max_thickness;
+    desc.density = scene.ice_density;
+    desc.motion = Motion::fixed;
+    add(world, desc, source);
+  };
+
+  // Channel walls.
   if (scene.channel) {
     const std::string where = scene.channel->source.where.empty() ? "channel" : scene.channel->source.where;
     for (const WallPolygon& wall : channel_walls(*scene.channel)) {
       const std::string source = where + " (channel " + wall.name + ")";
-      Vec2 centre{0.0, 0.0};
-      auto shape = std::make_shared<const geometry::ConvexPolygon>(
-          geometry::ConvexPolygon::from_vertices(wall.vertices, &centre));
-      PlacedBody p = placed(source, *shape, centre, 0.0, false);
-      for (const PlacedBody& q : bodies) {
-        if (q.dynamic && overlapping(p, q)) throw SceneError(q.source + ": overlaps " + source + " initially");
-      }
-      bodies.push_back(std::move(p));
-      BodyDesc desc;
-      desc.id = next++;
-      desc.shape = shape;
-      desc.position = centre;
-      desc.thickness = max_thickness;
-      desc.density = scene.ice_density;
-      desc.motion = Motion::fixed;
-      add(world, desc, source);
+      add_wall(wall.vertices, source, [&](const PlacedBody& q) { return q.source + ": overlaps " + source + " initially"; });
     }
   }
 
@@ -290,23 +295,11 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
         land.push_back(box);
         continue;
       }
-      Vec2 centre{0.0, 0.0};
-      auto shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(box, &centre));
-      PlacedBody p = placed(source + " (land: walls)", *shape, centre, 0.0, false);
-      for (const PlacedBody& q : bodies)
-        if (q.dynamic && overlapping(p, q))
-          throw SceneError(q.source + ": lies on " + source + " (the wall [" + std::to_string(lo.x()) + ", " +
-                           std::to_string(hi.x()) + "] x [" + std::to_string(lo.y()) + ", " + std::to_string(hi.y()) +
-                           "] m); move it into the water");
-      bodies.push_back(std::move(p));
-      BodyDesc desc;
-      desc.id = next++;
-      desc.shape = shape;
-      desc.position = centre;
-      desc.thickness = max_thickness;
-      desc.density = scene.ice_density;
-      desc.motion = Motion::fixed;
-      add(world, desc, source);
+      add_wall(box, source + " (land: walls)", [&](const PlacedBody& q) {
+        return q.source + ": lies on " + source + " (the wall [" + std::to_string(lo.x()) + ", " +
+               std::to_string(hi.x()) + "] x [" + std::to_string(lo.y()) + ", " + std::to_string(hi.y()) +
+               "] m); move it into the water";
+      });
     }
   }
 

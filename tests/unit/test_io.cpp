@@ -3,6 +3,7 @@
 // Every file written is read back with the readers users have (VTK's XML reader, the HDF5 C API).
 #include <gtest/gtest.h>
 
+#include "text_file.h"
 #include "pvd.h"
 
 #include <hdf5.h>
@@ -117,12 +118,7 @@ vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& file) {
   return out;
 }
 
-std::string slurp(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using tsupport::slurp;
 
 // (timestep, file) of every DataSet of a .pvd.
 std::vector<std::pair<double, std::string>> parse_pvd(const fs::path& file) {

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "text_file.h"
 #include "forcing/gridded_field.h"
 #include "io/field_file.h"
 
@@ -30,12 +31,7 @@ namespace fs = std::filesystem;
 const fs::path kSource = POLYFLOE_SOURCE_DIR;
 const fs::path kBuild = fs::path(POLYFLOE_BINARY).parent_path();
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using tsupport::slurp;
 
 // OpenFOAM's probes file (postProcessing/probes/<start time>/U): the points, then per time one vector per point.
 struct Probes {

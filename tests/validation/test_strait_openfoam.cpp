@@ -15,6 +15,7 @@
 #include <random>
 #include <sstream>
 
+#include "text_file.h"
 #include "forcing/gridded_field.h"
 #include "io/field_file.h"
 #include "io/hdf5_file.h"
@@ -30,12 +31,7 @@ namespace fs = std::filesystem;
 const fs::path kSource = POLYFLOE_SOURCE_DIR;
 const fs::path kBuild = fs::path(POLYFLOE_BINARY).parent_path();
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using tsupport::slurp;
 
 // A copy of of_cases/<name> (and common/) run once with `Allrun --quick` for every test of a suite.
 struct CaseRun {
