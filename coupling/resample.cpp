@@ -32,7 +32,7 @@ std::string grid_spec_error(const GridSpec& g) {
 }
 
 io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpec& spec, bool steady,
-                       const std::string& source) {
+                       const std::string& source, const std::function<void(double)>& progress) {
   if (std::string e = grid_spec_error(spec); !e.empty()) throw CouplingError(source + ": " + e);
   if (snapshots.empty()) throw CouplingError(source + ": no snapshot to resample");
   const auto& mb = snapshots.front().bounds();
@@ -94,9 +94,12 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
   f.w.assign(g.u.size(), 0.0);
   g.wet.assign(per, 0);
   Eigen::Vector3d u;
+  const double rows = static_cast<double>(snapshots.size() * g.z.size() * g.y.size());
+  double row = 0.0;
   for (std::size_t it = 0; it < snapshots.size(); ++it)
     for (std::size_t iz = 0; iz < g.z.size(); ++iz)
-      for (std::size_t iy = 0; iy < g.y.size(); ++iy)
+      for (std::size_t iy = 0; iy < g.y.size(); ++iy, ++row) {
+        if (progress) progress(row / rows);
         for (std::size_t ix = 0; ix < g.x.size(); ++ix) {
           if (!snapshots[it].sample({g.x[ix], g.y[iy], probe_z(g.z[iz])}, u)) continue;
           const std::size_t k = g.index(it, iz, iy, ix);
@@ -105,6 +108,7 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
           f.w[k] = u.z();
           g.wet[k % per] = 1;
         }
+      }
 
   // A depth-averaged (2-D) case has the same velocity at every level (to the rounding of the interpolation
   // through the one cell's depth): keep one.

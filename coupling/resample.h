@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,7 +29,8 @@ std::string grid_spec_error(const GridSpec& g);
 // level outside the mesh's depth is an error (never clamped), except in a 2-D case (one cell through the depth),
 // whose velocity is the same at every depth: one level is kept, as when every level holds the same velocity. A single snapshot of a steady case gets t = 0. Throws CouplingError for an
 // unusable spec or no snapshot.
+// `progress`, when given, is told the fraction of the nodes sampled so far, after every row of nodes.
 io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpec& spec, bool steady,
-                       const std::string& source);
+                       const std::string& source, const std::function<void(double)>& progress = {});
 
 }  // namespace polyfloe::coupling

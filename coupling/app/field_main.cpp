@@ -277,7 +277,17 @@ int import(const Args& a) {
   const bool steady = coupling::case_is_steady(case_dir);
   coupling::CaseNotes notes;
   const std::vector<coupling::MeshSnapshot> snaps = coupling::read_openfoam_case(case_dir, a.times, a.transform, &notes);
-  io::FieldFile f = coupling::resample(snaps, a.grid, steady, fs::absolute(case_dir).lexically_normal().string());
+  // A long import says how far it is, every 2 s after the first 2 (stderr: the summary stays on stdout).
+  auto last = std::chrono::steady_clock::now();
+  const auto progress = [&](double done) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last < std::chrono::seconds(2)) return;
+    last = now;
+    std::cerr << "polyfloe field: sampling the grid, " << static_cast<int>(100.0 * done) << " % after "
+              << static_cast<int>(std::chrono::duration<double>(now - t0).count()) << " s\n";
+  };
+  io::FieldFile f =
+      coupling::resample(snaps, a.grid, steady, fs::absolute(case_dir).lexically_normal().string(), progress);
   f.info.created_by = std::string("polyfloe field import ") + POLYFLOE_VERSION;
   io::write_field_file(a.output, f);
   std::size_t frames = 0;
