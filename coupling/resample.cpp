@@ -47,11 +47,13 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
   {
     const double nx = std::max(2.0, std::ceil((b[2] - b[0]) / cell - 1e-9) + 1.0);
     const double ny = std::max(2.0, std::ceil((b[3] - b[1]) / cell - 1e-9) + 1.0);
-    const double total = nx * ny * static_cast<double>(spec.z.size()) * static_cast<double>(snapshots.size());
+    // A 2-D case (one cell through the depth) is sampled at one level whatever --z lists.
+    const double levels = snapshots.front().depth_averaged() ? 1.0 : static_cast<double>(spec.z.size());
+    const double total = nx * ny * levels * static_cast<double>(snapshots.size());
     if (!(total <= spec.max_nodes)) {
       std::ostringstream why;
       why << source << ": a grid of " << nx << " x " << ny << " nodes at " << cell << " m spacing"
-          << (spec.cell > 0.0 ? "" : " (the mesh's finest cell)") << ", x " << spec.z.size() << " level(s) x "
+          << (spec.cell > 0.0 ? "" : " (the mesh's finest cell)") << ", x " << levels << " level(s) x "
           << snapshots.size() << " time(s) is " << total << " nodes, about " << std::ceil(total * 48.0 / 1048576.0)
           << " MiB in memory and " << std::ceil(total * 24.0 / 1048576.0) << " MiB of velocities in the file (at most "
           << spec.max_nodes << " nodes): choose a larger --cell (" << cell * std::sqrt(total / spec.max_nodes)
@@ -85,6 +87,7 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
   }
   std::sort(g.z.begin(), g.z.end());
   g.z.erase(std::unique(g.z.begin(), g.z.end(), [](double a, double c) { return std::abs(a - c) < 1e-9; }), g.z.end());
+  if (flat) g.z = {g.z.back()};  // one velocity through the depth: one level, stored under the top one's height
   const auto probe_z = [&](double z) { return std::clamp(surface + z, zlo + inset, zhi - inset); };
   for (const MeshSnapshot& s : snapshots) g.t.push_back(steady && snapshots.size() == 1 ? 0.0 : s.time());
 
