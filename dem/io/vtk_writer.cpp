@@ -144,6 +144,20 @@ namespace {
 void add_time(vtkDataObject* data, const dynamics::World& world) { detail::add_time(data, world.time(), world.step_count()); }
 
 
+// Body i's draft [m] at its equilibrium in still water (0 where its density is unknown).
+double draft_of(const dynamics::World& world, int i, double water_density) {
+  const double h = world.thickness(i);                                  // [m]
+  const double volume = world.shape(i).area() * h;                      // [m^3]
+  const double density = volume > 0.0 ? world.mass(i) / volume : 0.0;  // [kg/m^3]
+  const double draft = h * density / water_density;
+  return std::isfinite(draft) ? draft : 0.0;
+}
+
+// The height of body i's top face [m]: where marks on the ice are drawn so that ParaView shows them over the floes.
+double top_of(const dynamics::World& world, int i, double water_density) {
+  return world.thickness(i) - draft_of(world, i, water_density);
+}
+
 // Every body as a prism floating at its equilibrium draft: points are the bottom ring then the top ring of each
 // body; cells are the top polygon, the bottom polygon (reversed) and one quad per edge, all facing outward.
 vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double water_density) {
@@ -178,11 +192,8 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
   for (int i = 0; i < bodies; ++i) {
     const auto ring = world.world_vertices(i);
     const auto n = static_cast<vtkIdType>(ring.size());
-    const double h = world.thickness(i);                                    // [m]
-    const double volume = world.shape(i).area() * h;                        // [m^3]
-    const double density = volume > 0.0 ? world.mass(i) / volume : 0.0;    // [kg/m^3]
-    double draft = h * density / water_density;                             // [m]
-    if (!std::isfinite(draft)) draft = 0.0;
+    const double h = world.thickness(i);  // [m]
+    const double draft = draft_of(world, i, water_density);
     for (vtkIdType j = 0; j < n; ++j) {
       const auto& v = ring[static_cast<std::size_t>(j)];
       double* bottom = xyz + 3 * (p0 + j);
@@ -267,7 +278,7 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
 }
 
 // One line per bond face, where the face is now (along element a's side of it), with its state as cell data.
-vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world) {
+vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world, double water_density) {
   const bonds::BondSet& b = *world.bonds();
   const auto n = static_cast<vtkIdType>(b.faces());
   const std::size_t per = static_cast<std::size_t>(b.material().points_per_face);
@@ -288,7 +299,8 @@ vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world) {
     const Vec2 first = geometry::rotate(b.point_anchor_a(p0), c, s), last = geometry::rotate(b.point_anchor_a(p1), c, s);
     const Vec2 half = (last - first) / (2.0 * static_cast<double>(per - 1));
     const Vec2 e0 = pos[a] + first - half, e1 = pos[a] + last + half;
-    const double x0[3] = {e0.x(), e0.y(), 0.0}, x1[3] = {e1.x(), e1.y(), 0.0};
+    const double z = top_of(world, static_cast<int>(a), water_density);  // on the ice's top face
+    const double x0[3] = {e0.x(), e0.y(), z}, x1[3] = {e1.x(), e1.y(), z};
     coords->SetTypedTuple(2 * f, x0);
     coords->SetTypedTuple(2 * f + 1, x1);
     double sn = 0.0, st = 0.0;
@@ -324,8 +336,9 @@ vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world) {
   return data;
 }
 
-// One vertex per active contact at its point (z = 0), with the contact's forces and geometry as point data.
-vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world) {
+// One vertex per active contact at its point, on the higher of the two bodies' top faces (where ParaView shows it
+// over the floes), with the contact's forces and geometry as point data.
+vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world, double water_density) {
   const auto& contacts = world.contacts();
   const auto n = static_cast<vtkIdType>(contacts.size());
   auto coords = make_array<vtkDoubleArray>("Points", 3, n);
@@ -341,7 +354,8 @@ vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world) {
   for (vtkIdType c = 0; c < n; ++c) {
     const auto& r = contacts[static_cast<std::size_t>(c)];
     const auto f = r.force_on_b();
-    const double p[3] = {r.geometry.point.x(), r.geometry.point.y(), 0.0};
+    const double z = std::max(top_of(world, r.a, water_density), top_of(world, r.b, water_density));
+    const double p[3] = {r.geometry.point.x(), r.geometry.point.y(), z};
     const double f3[3] = {f.x(), f.y(), 0.0};
     const double n3[3] = {r.geometry.normal.x(), r.geometry.normal.y(), 0.0};
     coords->SetTypedTuple(c, p);
@@ -490,7 +504,7 @@ void VtkSeriesWriter::write_frame(const dynamics::World& world) {
   if (write_contacts_) {
     contacts_file = "contacts/" + frame_name("contacts", frames_);
     contacts_pvd_.record(contacts_file);
-    write_polydata(contacts_polydata(world), dir_ / contacts_file);
+    write_polydata(contacts_polydata(world, water_density_), dir_ / contacts_file);
   }
   std::string bonds_file;
   if (world.bonds()) {
@@ -500,7 +514,7 @@ void VtkSeriesWriter::write_frame(const dynamics::World& world) {
     if (ec) throw IoError("cannot create VTK output folder " + (dir_ / "bonds").string() + ": " + ec.message());
     bonds_file = "bonds/" + frame_name("bonds", frames_);
     bonds_pvd_.record(bonds_file);
-    write_polydata(bonds_polydata(world), dir_ / bonds_file);
+    write_polydata(bonds_polydata(world, water_density_), dir_ / bonds_file);
   }
   // Collections last: they only ever list frames that are complete on disk.
   floes_pvd_.add(world.time(), floes_file);
