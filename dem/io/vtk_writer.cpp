@@ -20,6 +20,8 @@
 #include <vtkTypeInt32Array.h>
 #include <vtkTypeUInt64Array.h>
 #include <vtkXMLImageDataWriter.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <charconv>
@@ -570,6 +572,16 @@ void VtkImageSeriesWriter::write_frame(double time, std::uint64_t step, std::spa
     }
     image->GetCellData()->AddArray(a);
   }
+  // Cells with a NaN (no ice sampled there) hidden through VTK's ghost array: ParaView leaves them out instead of
+  // drawing NaN's colour over the water.
+  auto ghost = make_array<vtkUnsignedCharArray>(vtkDataSetAttributes::GhostArrayName(), 1, cells);
+  for (vtkIdType c = 0; c < cells; ++c) {
+    bool nan = false;
+    for (const CellField& f : fields)
+      for (int k = 0; k < f.components; ++k) nan = nan || std::isnan(f.values[static_cast<std::size_t>(c * f.components + k)]);
+    ghost->SetValue(c, nan ? vtkDataSetAttributes::HIDDENCELL : 0);
+  }
+  image->GetCellData()->AddArray(ghost);
   add_time(image, time, step);
   vtkNew<vtkXMLImageDataWriter> writer;
   write_xml(writer, image, dir_ / file);

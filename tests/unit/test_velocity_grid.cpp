@@ -5,6 +5,7 @@
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkDataSetAttributes.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkXMLImageDataReader.h>
@@ -218,6 +219,17 @@ TEST(VelocityGridRecorder, WritesHdf5AndImageSeries) {
   EXPECT_EQ(a->GetComponent(2 * 15 + 5, 2), 0.0);
   ASSERT_NE(img->GetCellData()->GetArray("ice_fraction"), nullptr);
   ASSERT_NE(img->GetCellData()->GetArray("speed"), nullptr);
+  // Ice-free cells (NaN velocity) are hidden with VTK's ghost array, covered ones shown.
+  vtkDataArray* ghost = img->GetCellData()->GetArray("vtkGhostType");
+  ASSERT_NE(ghost, nullptr);
+  EXPECT_EQ(ghost->GetComponent(2 * 15 + 5, 0), 0.0);
+  int hidden = 0;
+  for (vtkIdType c = 0; c < 15 * 6; ++c) {
+    const bool nan = std::isnan(a->GetComponent(c, 0));
+    EXPECT_EQ(ghost->GetComponent(c, 0), nan ? double(vtkDataSetAttributes::HIDDENCELL) : 0.0) << c;
+    hidden += nan;
+  }
+  EXPECT_GT(hidden, 0);
   EXPECT_TRUE(fs::exists(dir / "velocity.pvd"));
   fs::remove_all(dir);
 }
