@@ -38,6 +38,7 @@ vtkSmartPointer<vtkPolyData> spatial_bodies_polydata(const dynamics::SpatialWorl
   auto id = make_array<vtkTypeUInt64Array>("id", 1, cells);
   auto motion = make_array<vtkUnsignedCharArray>("motion", 1, cells);
   auto vel = make_array<vtkDoubleArray>("velocity", 3, cells);
+  auto speed = make_array<vtkDoubleArray>("speed", 1, cells);  // |velocity| [m/s], as the planar floes carry
   auto omega = make_array<vtkDoubleArray>("angular_velocity", 3, cells);
   vtkIdType p0 = 0, c = 0;
   std::vector<vtkIdType> loop;
@@ -52,6 +53,7 @@ vtkSmartPointer<vtkPolyData> spatial_bodies_polydata(const dynamics::SpatialWorl
       id->SetValue(c, world.id(i));
       motion->SetValue(c, static_cast<unsigned char>(world.motion(i)));
       vel->SetTuple(c, v.data());
+      speed->SetValue(c, v.norm());
       omega->SetTuple(c, om.data());
       ++c;
     }
@@ -63,6 +65,7 @@ vtkSmartPointer<vtkPolyData> spatial_bodies_polydata(const dynamics::SpatialWorl
   pd->GetCellData()->AddArray(id);
   pd->GetCellData()->AddArray(motion);
   pd->GetCellData()->AddArray(vel);
+  pd->GetCellData()->AddArray(speed);
   pd->GetCellData()->AddArray(omega);
   add_time(pd, world.time(), world.step_count());
   return pd;

@@ -138,6 +138,18 @@ TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
             std::string::npos)
       << series;
   EXPECT_EQ(series.find("bodies_000051"), std::string::npos) << series;
+  // bodies.pvd carries `speed` as floes.pvd does: |velocity| of the body on each of its faces.
+  const std::string vtp = "/usr/bin/python3 -c \"import vtk, math; r = vtk.vtkXMLPolyDataReader(); r.SetFileName('" +
+                          (out / "bodies" / "bodies_000050.vtp").string() +
+                          "'); r.Update(); d = r.GetOutput().GetCellData(); s = d.GetArray('speed'); "
+                          "v = d.GetArray('velocity'); print('%.12g %.12g' % (s.GetValue(0), "
+                          "math.sqrt(sum(x * x for x in v.GetTuple3(0)))))\"";
+  FILE* q = popen(vtp.c_str(), "r");
+  ASSERT_NE(q, nullptr);
+  double speed = -1.0, norm = -2.0;
+  EXPECT_EQ(std::fscanf(q, "%lf %lf", &speed, &norm), 2);
+  pclose(q);
+  EXPECT_NEAR(speed, norm, 1e-12);
   // The cube lifted clear of the plate: no impact, and the summary says so instead of a silent exit 0.
   const Result none = run_polyfloe("run " + scene + " -o " + out.string() + " --set spatial.bodies.1.position=[0,0,5]");
   ASSERT_EQ(none.code, 0) << none.output;
