@@ -19,6 +19,13 @@
 
 namespace polyfloe::run {
 
+std::string FrameClock::note(double dt) const {
+  std::ostringstream m;
+  m << "polyfloe: note: output.interval " << interval << " s is shorter than the step dt = " << dt
+    << " s: a frame at every step (at the step times, not the interval's multiples)";
+  return m.str();
+}
+
 using geometry::Vec2;
 
 namespace {
@@ -319,7 +326,8 @@ RunSummary Simulation::run() {
   }
   int frames = 0;
   std::vector<double> frame_times;
-  double next_frame = interval;
+  FrameClock schedule = FrameClock::make(interval, t_end, dt);
+  if (schedule.every_step) std::fprintf(stderr, "%s\n", schedule.note(dt).c_str());
   std::vector<double> extra_values;
   auto write_frame = [&] {
     extra_values.clear();
@@ -354,7 +362,7 @@ RunSummary Simulation::run() {
     c.dt = dt;
     c.frames = frames;
     c.frame_times = frame_times;
-    c.next_frame = next_frame;
+    c.next_frame = schedule.next;
     c.world = world_.state();
     if (channel) c.channel = channel->state();
     if (velocity_grid) c.next_sample = velocity_grid->next_sample();
@@ -367,7 +375,7 @@ RunSummary Simulation::run() {
     const Checkpoint& c = *restart_;
     frames = c.frames;
     frame_times = c.frame_times;
-    next_frame = c.next_frame;
+    schedule.next = c.next_frame;
     if (h5) {
       h5->adopt_frames(adopt_from, frames);
       h5->start_swmr();  // consistent on disk from here on ...
@@ -386,19 +394,18 @@ RunSummary Simulation::run() {
   io::Progress progress(t_end, options_.interactive, stderr, first_step);
   const double start_time = world_.time();
 
-  // Steps of equal size; the last one is shortened to land on t_end. Frames at the first step at or after each
-  // multiple of the output interval; checkpoints at every `checkpoints.every`-th frame and at the end.
+  // Steps of dt, landing on every frame time and on t_end (FrameClock); checkpoints at every `checkpoints.every`-th
+  // frame and at the end.
   try {
-    while (world_.time() < t_end * (1.0 - 1e-12)) {
-      const double h = std::min(dt, t_end - world_.time());
-      world_.step(h);
-      const bool last = world_.time() >= t_end * (1.0 - 1e-12);
+    while (!schedule.at_end(world_.time())) {
+      world_.step(schedule.step(world_.time(), dt));
+      const bool last = schedule.at_end(world_.time());
       // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check
       // costs a few ns per body against ~200 ns per body for the step.
       check_stability(world_, dt, v_ref);
       if (velocity_grid) velocity_grid->after_step(world_);
-      if (last || world_.time() >= next_frame * (1.0 - 1e-12)) {
-        next_frame = interval * (std::floor(world_.time() / interval * (1.0 + 1e-12)) + 1.0);
+      if (schedule.frame_due(world_.time())) {
+        schedule.frame_written(world_.time());
         write_frame();
         if (checkpoints.every > 0 && (last || frames % checkpoints.every == 0)) {
           checkpoint(last ? "final" : "frame", checkpoint_path(out, frames));

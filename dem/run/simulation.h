@@ -2,6 +2,8 @@
 // instability guard on their schedules. It is the layer that knows about files; the World never does.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -53,6 +55,31 @@ struct RunSummary {
   std::optional<double> channel_jam_time;     // ... and when it jammed [s], if it did
   std::optional<double> first_contact;        // spatial runs: the end of the first step with a contact [s]
   std::uint64_t contact_steps = 0;            // ... and the steps that had one
+};
+
+// The output schedule of both drivers: steps of dt, the step before a frame time (a multiple of the output interval)
+// or the end time shortened to land on it exactly (or stretched by at most 1e-6 dt, so as to leave no sliver of a
+// step after it). Frames at t = 0, at every multiple of the interval and at the end. An interval shorter than the
+// step writes a frame at every step instead (at the step times; the driver says so).
+struct FrameClock {
+  double interval = 0.0;    // [s]
+  double end = 0.0;         // [s]
+  double next = 0.0;        // the next frame time [s]
+  bool every_step = false;  // interval < dt
+  static FrameClock make(double interval, double end, double dt) {
+    return {interval, end, interval, interval < dt * (1.0 - 1e-9)};
+  }
+  // The step to take from time t with the step size dt [s].
+  double step(double t, double dt) const {
+    const double left = (every_step ? end : std::min(next, end)) - t;
+    return left <= dt * (1.0 + 1e-6) ? left : dt;
+  }
+  bool at_end(double t) const { return t >= end * (1.0 - 1e-12); }
+  bool frame_due(double t) const { return every_step || at_end(t) || t >= next * (1.0 - 1e-12); }
+  // After the frame at time t: the next frame time.
+  void frame_written(double t) { next = interval * (std::floor(t / interval * (1.0 + 1e-12)) + 1.0); }
+  // The note a driver prints when every_step is set.
+  std::string note(double dt) const;
 };
 
 // Checks the state for NaN/Inf and runaway motion; throws InstabilityError with a suggestion. `dt` is the step in

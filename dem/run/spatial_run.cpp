@@ -3,6 +3,7 @@
 #include "scene/scene_reader.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -76,20 +77,18 @@ RunSummary run_spatial(const scene::Scene& scene, dynamics::SpatialWorld& world,
   const double dt = summary.dt;
   world.compute_forces(dt);
   frame();
-  // The planar driver's schedule: steps of dt, the last one shortened to land on the end time; a frame at the
-  // first step at or after each multiple of the output interval, and at the end.
-  const double t_end = scene.time.duration, interval = scene.output.interval;
-  double next_frame = interval;
-  while (world.time() < t_end * (1.0 - 1e-12)) {
-    world.step(std::min(dt, t_end - world.time()));
+  // The planar driver's schedule (FrameClock): steps of dt landing on every frame time and on the end time.
+  FrameClock schedule = FrameClock::make(scene.output.interval, scene.time.duration, dt);
+  if (schedule.every_step) std::fprintf(stderr, "%s\n", schedule.note(dt).c_str());
+  while (!schedule.at_end(world.time())) {
+    world.step(schedule.step(world.time(), dt));
     check_stability(world, dt);
     if (!world.contacts().empty()) {
       if (!summary.first_contact) summary.first_contact = world.time();
       ++summary.contact_steps;
     }
-    const bool last = world.time() >= t_end * (1.0 - 1e-12);
-    if (last || world.time() >= next_frame * (1.0 - 1e-12)) {
-      next_frame = interval * (std::floor(world.time() / interval * (1.0 + 1e-12)) + 1.0);
+    if (schedule.frame_due(world.time())) {
+      schedule.frame_written(world.time());
       frame();
     }
   }

@@ -152,7 +152,8 @@ void check_run_length(const Scene& scene, double dt) {
         << " a run may take; shorten run.duration" << (scene.time.dt ? " or raise run.dt" : "");
     throw SceneError(msg.str());
   }
-  // A frame at most every step: the frames are those of the interval or of the steps, whichever are fewer.
+  // A frame at most every step (FrameClock): the frames are those of the interval or of the steps, whichever are
+  // fewer.
   const double frames = std::min(std::floor(scene.time.duration / scene.output.interval), steps) + 1.0;
   if ((scene.output.vtk || scene.output.hdf5) && !(frames <= OutputSettings::kMaxFrames)) {
     std::ostringstream msg;

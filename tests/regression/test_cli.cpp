@@ -16,6 +16,7 @@
 
 #include "scratch_dir.h"
 #include "cli_support.h"
+#include "text_file.h"
 
 namespace fs = std::filesystem;
 
@@ -130,7 +131,7 @@ TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
   EXPECT_NEAR(v, 1.0 / 7.0, 0.01);
   EXPECT_NEAR(w, 9.0 / 7.0, 0.01);
   // The summary says when the impact came; the last frame is the end state (t = run.duration exactly, the last
-  // step shortened as in planar runs), the frames before it at the first step at or after each 2 ms.
+  // step shortened as in planar runs), the frames before it at each multiple of 2 ms exactly.
   EXPECT_NE(r.output.find("Contacts: the first at t = 0.00"), std::string::npos) << r.output;
   std::ifstream pvd(out / "bodies.pvd");
   const std::string series((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
@@ -138,6 +139,12 @@ TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
             std::string::npos)
       << series;
   EXPECT_EQ(series.find("bodies_000051"), std::string::npos) << series;
+  EXPECT_NE(series.find("timestep=\"0.002\" group=\"\" part=\"0\" file=\"bodies/bodies_000001.vtp\""),
+            std::string::npos)
+      << series;
+  EXPECT_NE(series.find("timestep=\"0.098\" group=\"\" part=\"0\" file=\"bodies/bodies_000049.vtp\""),
+            std::string::npos)
+      << series;
   // bodies.pvd carries `speed` as floes.pvd does: |velocity| of the body on each of its faces.
   const std::string vtp = "/usr/bin/python3 -c \"import vtk, math; r = vtk.vtkXMLPolyDataReader(); r.SetFileName('" +
                           (out / "bodies" / "bodies_000050.vtp").string() +
@@ -224,11 +231,47 @@ TEST(Cli, OverflowingDragStopsWithExitThree) {
   fs::remove_all(out);
 }
 
-TEST(Cli, TinyOutputIntervalFinishes) {
+// An output interval shorter than the step writes a frame at every step (the old schedule), says so, and finishes:
+// 1e-300 s neither hangs nor shrinks the step.
+TEST(Cli, OutputIntervalShorterThanTheStepWritesEveryStep) {
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_tiny_interval");
-  const Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
-                            " --set output.interval=1e-300 --set run.duration=0.01");
+  fs::remove_all(out);
+  Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
+                          " --set output.interval=1e-300 --set run.duration=0.01");
   EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: output.interval 1e-300 s is shorter than the step"), std::string::npos) << r.output;
+  r = run_polyfloe("run " + kScene + " -o " + out.string() +
+                   " --set run.dt=1e-3 --set output.interval=5e-4 --set run.duration=0.01");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("10 steps"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "floes" / "floes_000010.vtp"));
+  EXPECT_FALSE(fs::exists(out / "floes" / "floes_000011.vtp"));
+  // An interval of exactly one step: a frame every step, no note.
+  r = run_polyfloe("run " + kScene + " -o " + out.string() +
+                   " --set run.dt=1e-3 --set output.interval=1e-3 --set run.duration=0.01");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("note: output.interval"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("10 steps"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "floes" / "floes_000010.vtp"));
+  fs::remove_all(out);
+}
+
+// Frames at the exact multiples of the interval (the step before each shortened to land on it) and at the end,
+// whatever the step: the .pvd's times are k * interval, written exactly.
+TEST(Cli, FramesLandOnMultiplesOfTheInterval) {
+  const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_frame_times");
+  fs::remove_all(out);
+  const Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
+                                " --set run.dt=0.0013 --set output.interval=0.01 --set run.duration=0.035");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string pvd = polyfloe::tsupport::slurp(out / "floes.pvd");
+  for (const char* t : {"timestep=\"0\"", "timestep=\"0.01\"", "timestep=\"0.02\"", "timestep=\"0.03\"",
+                        "timestep=\"0.035\""}) {
+    EXPECT_NE(pvd.find(t), std::string::npos) << t << " not in\n" << pvd;
+  }
+  EXPECT_EQ(pvd.find("timestep=\"0.0104"), std::string::npos) << pvd;
+  // 0.035 s in steps of 0.0013 s, 8 per interval (the 8th shortened to land on it) and 4 to the end: 28 steps.
+  EXPECT_NE(r.output.find("28 steps"), std::string::npos) << r.output;
   fs::remove_all(out);
 }
 
