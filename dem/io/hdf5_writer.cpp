@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <system_error>
 #include <vector>
+
+#include "io/atomic_file.h"
 
 #include "dynamics/world.h"
 #include "io/hdf5_file.h"
@@ -55,6 +59,11 @@ struct Hdf5Writer::Impl {
   Dataset time;
   hdf5::Group diagnostics;
   Dataset position, orientation, velocity, angular_velocity;
+  Dataset vertices_xy;                   // [T, V, 2] float32: the polygons where they are (for results.xmf)
+  std::vector<double> body_xy;           // body-frame vertices, as floes/polygon_xy
+  std::vector<std::int64_t> offsets;     // as floes/polygon_offsets
+  std::uint64_t topology_size = 0;       // entries of floes/xdmf_topology
+  std::vector<float> row_xy;
   Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum,
       angular_momentum;
   std::vector<Dataset> extra;
@@ -82,7 +91,7 @@ struct Hdf5Writer::Impl {
     centre_z.resize(bodies);
     std::vector<double> thickness(bodies), mass(bodies), inertia(bodies), xy;
     std::vector<std::int8_t> motion(bodies);
-    std::vector<std::int64_t> offsets{0};
+    offsets.assign(1, 0);
     for (int i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
       ids[k] = world.id(i);
@@ -117,6 +126,17 @@ struct Hdf5Writer::Impl {
     units(d, "1", "body i has the vertex rows polygon_offsets[i] .. polygon_offsets[i+1]-1 of polygon_xy");
     d = floes.write_dataset<double>("polygon_xy", xy, Dims{xy.size() / 2, 2});
     units(d, "m", "body-frame vertices (centre of mass at the origin), counter-clockwise");
+    // XDMF's mixed topology: per body 3 (polygon), its vertex count, its rows of state/vertices_xy.
+    std::vector<std::int64_t> topology;
+    for (std::size_t k = 0; k < bodies; ++k) {
+      topology.push_back(3);
+      topology.push_back(offsets[k + 1] - offsets[k]);
+      for (std::int64_t v = offsets[k]; v < offsets[k + 1]; ++v) topology.push_back(v);
+    }
+    topology_size = topology.size();
+    d = floes.write_dataset<std::int64_t>("xdmf_topology", topology);
+    units(d, "1", "the polygons for results.xmf: per body 3 (XDMF polygon), its vertex count, its vertex rows");
+    body_xy = std::move(xy);
 
     auto root_series = [&](hdf5::Group& g, const char* name, DType type, const Dims& row, std::uint64_t chunk,
                            const char* u, const char* description = nullptr) {
@@ -132,6 +152,9 @@ struct Hdf5Writer::Impl {
                               "unit quaternion (w, x, y, z) of the body frame");
     velocity = root_series(state, "velocity", DType::f64, {bodies, 3}, 1, "m/s");
     angular_velocity = root_series(state, "angular_velocity", DType::f64, {bodies, 3}, 1, "rad/s");
+    vertices_xy = root_series(state, "vertices_xy", DType::f32, {body_xy.size() / 2, 2}, 1, "m",
+                              "every body's polygon where it is (rows as floes/polygon_xy), single precision: for "
+                              "viewing (results.xmf)");
     diagnostics = root.create_group("diagnostics");
     auto& diag = diagnostics;
     kinetic_energy = root_series(diag, "kinetic_energy", DType::f64, {}, kSeriesChunk, "J",
@@ -265,6 +288,16 @@ struct Hdf5Writer::Impl {
       row3[3 * k + 2] = omega[k];
     }
     angular_velocity.append_rows<double>(row3, 1);
+    row_xy.resize(body_xy.size());
+    for (std::size_t k = 0; k < bodies; ++k) {
+      const double c = std::cos(yaw[k]), sn = std::sin(yaw[k]);
+      for (auto v = static_cast<std::size_t>(offsets[k]); v < static_cast<std::size_t>(offsets[k + 1]); ++v) {
+        const double bx = body_xy[2 * v], by = body_xy[2 * v + 1];
+        row_xy[2 * v] = static_cast<float>(pos[k].x() + c * bx - sn * by);
+        row_xy[2 * v + 1] = static_cast<float>(pos[k].y() + sn * bx + c * by);
+      }
+    }
+    vertices_xy.append_rows<float>(row_xy, 1);
 
     double speed_max = 0.0, speed_sum = 0.0;
     std::size_t dynamic = 0;
@@ -364,6 +397,55 @@ void Hdf5Writer::adopt_frames(const std::filesystem::path& previous, int frames)
   copy_series(impl_->file.root(), old.root(), static_cast<std::uint64_t>(frames));
   impl_->frames = frames;
   impl_->file.flush();
+}
+
+void Hdf5Writer::write_xdmf(const std::filesystem::path& xmf) {
+  impl_->file.flush();
+  const std::vector<double> times = impl_->time.read<double>();
+  const std::uint64_t n = impl_->bodies, v = impl_->body_xy.size() / 2, t = times.size();
+  const std::string h5 = impl_->file.path().filename().string() + ":";
+  std::ostringstream x;
+  x.precision(17);
+  auto item = [&](const std::string& dims, const char* type, int precision, const std::string& path) {
+    x << "<DataItem Dimensions=\"" << dims << "\" NumberType=\"" << type << "\" Precision=\"" << precision
+      << "\" Format=\"HDF\">" << h5 << path << "</DataItem>";
+  };
+  // Frame k of a [T, rows, cols] series.
+  auto slab = [&](std::uint64_t k, std::uint64_t rows, std::uint64_t cols, const char* type, int precision,
+                  const std::string& path) {
+    x << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << rows << " " << cols << "\">"
+      << "<DataItem Dimensions=\"3 3\" Format=\"XML\">" << k << " 0 0 1 1 1 1 " << rows << " " << cols
+      << "</DataItem>";
+    item(std::to_string(t) + " " + std::to_string(rows) + " " + std::to_string(cols), type, precision, path);
+    x << "</DataItem>";
+  };
+  auto attribute = [&](const char* name, const char* kind, const char* units, auto&& data) {
+    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << kind << "\" Center=\"Cell\">"
+      << "<Information Name=\"units\" Value=\"" << units << "\"/>";
+    data();
+    x << "</Attribute>\n";
+  };
+  x << "<?xml version=\"1.0\" ?>\n<!-- PolyFloe: the frames of " << impl_->file.path().filename().string()
+    << " for ParaView (File > Open, \"XDMF Reader\"); written with each checkpoint and at the end of the run -->\n"
+    << "<Xdmf Version=\"2.0\">\n<Domain>\n<Grid Name=\"floes\" GridType=\"Collection\" "
+       "CollectionType=\"Temporal\">\n";
+  for (std::uint64_t k = 0; k < t; ++k) {
+    x << "  <Grid Name=\"frame " << k << "\" GridType=\"Uniform\">\n    <Time Value=\"" << times[k] << "\"/>\n"
+      << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << n << "\">";
+    item(std::to_string(impl_->topology_size), "Int", 8, "/floes/xdmf_topology");
+    x << "</Topology>\n    <Geometry GeometryType=\"XY\">";
+    slab(k, v, 2, "Float", 4, "/state/vertices_xy");
+    x << "</Geometry>\n";
+    attribute("velocity", "Vector", "m/s", [&] { slab(k, n, 3, "Float", 8, "/state/velocity"); });
+    attribute("angular_velocity", "Vector", "rad/s", [&] { slab(k, n, 3, "Float", 8, "/state/angular_velocity"); });
+    attribute("id", "Scalar", "1", [&] { item(std::to_string(n), "UInt", 8, "/floes/id"); });
+    attribute("thickness", "Scalar", "m", [&] { item(std::to_string(n), "Float", 8, "/floes/thickness"); });
+    attribute("motion", "Scalar", "1 (0 dynamic, 1 fixed, 2 kinematic)",
+              [&] { item(std::to_string(n), "Char", 1, "/floes/motion"); });
+    x << "  </Grid>\n";
+  }
+  x << "</Grid>\n</Domain>\n</Xdmf>\n";
+  write_file_atomic(xmf, x.str());
 }
 
 void Hdf5Writer::start_swmr() { impl_->start_swmr(); }

@@ -4,9 +4,11 @@
 //   /floes/id [N] uint64, thickness [N] [m], mass [N] [kg], inertia [N] [kg m^2], motion [N] int8
 //          (0 dynamic, 1 fixed, 2 kinematic), polygon_offsets [N+1] int64, polygon_xy [V,2] [m]
 //          (body-frame vertices of body i: rows polygon_offsets[i] .. polygon_offsets[i+1]-1, counter-clockwise)
+//          xdmf_topology [L] int64 (the polygons for results.xmf: per body 3, its vertex count, its vertex rows)
 //   /state/position [T,N,3] [m]                centre of mass; z = h/2 - draft
 //          orientation [T,N,4]                 unit quaternion (w, x, y, z) = (cos(yaw/2), 0, 0, sin(yaw/2))
 //          velocity [T,N,3] [m/s], angular_velocity [T,N,3] [rad/s] (0, 0, omega)
+//          vertices_xy [T,V,2] float32 [m]     every polygon where it is (rows as polygon_xy): for viewing
 //   /diagnostics/kinetic_energy [T] [J], contact_count [T], max_speed [T] [m/s], mean_speed [T] [m/s]
 //          (both over dynamic bodies), max_overlap_depth [T] [m], linear_momentum [T,2] [kg m/s],
 //          angular_momentum [T] [kg m^2/s]; with walls or plates: boundary_ids [K], boundary_force [T,K,2] [N]
@@ -78,6 +80,12 @@ class Hdf5Writer {
   // `frames`. Call after every series exists (the driver's too). Throws IoError naming the file when `previous`
   // cannot be read, lacks a series, has fewer frames, or its series differ in shape.
   void adopt_frames(const std::filesystem::path& previous, int frames);
+  // Writes `xmf` (atomically): an XDMF 2 description of the file's frames so far as a temporal collection of the
+  // bodies' polygons (state/vertices_xy) with their cell data (velocity, angular velocity, id, thickness, motion;
+  // units as Information items), for ParaView's "XDMF Reader" (its Xdmf3 readers fail on a hyperslab of the
+  // geometry). References this file by its name, relative to the folder of `xmf` (keep them side by side).
+  // Throws IoError naming the file.
+  void write_xdmf(const std::filesystem::path& xmf);
   // The /diagnostics group, for series the driver writes itself: append their row for a frame before
   // write_frame(), which flushes the file.
   hdf5::Group& diagnostics();

@@ -317,6 +317,7 @@ RunSummary Simulation::run() {
   if (scene_.output.hdf5) {
     io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
     manifest.record("results.h5");
+    manifest.record("results.xmf");
     h5 = std::make_unique<io::Hdf5Writer>(out / "results.h5", world_, info, rho_w, extra);
   }
   std::optional<VelocityGridRecorder> velocity_grid;
@@ -346,6 +347,7 @@ RunSummary Simulation::run() {
   auto checkpoint = [&](const char* kind, const fs::path& file) {
     if (h5) {  // the copy of results.h5 first: it then holds at least the frames of every checkpoint on disk
       h5->flush();
+      h5->write_xdmf(out / "results.xmf");
       const fs::path snapshot = out / kResultsSnapshot;
       manifest.record("checkpoints/");
       manifest.record(kResultsSnapshot);
@@ -436,6 +438,7 @@ RunSummary Simulation::run() {
     throw InstabilityError(message);
   }
   progress.finish(world_.time(), world_.step_count());
+  if (h5) h5->write_xdmf(out / "results.xmf");
 
   RunSummary s;
   s.steps = world_.step_count() - first_step;
