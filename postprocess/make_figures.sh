@@ -12,13 +12,17 @@
 #   strait_openfoam_vs_uniform.png  of_cases/strait/Allrun --uniform: OpenFOAM, import, two 600 s ice runs (~5 min).
 #   field_sampling.png    field-sampling error vs cost: tests/bench/bench_field_sampling on the strait case (~1 min),
 #                         data docs/data/field_sampling.json.
+#   paraview_*.png        ParaView's pictures (postprocess/paraview/, rendered by pvbatch; installs ParaView with
+#                         scripts/setup.sh paraview): the channel scene (floes by speed, velocity grid), its contacts,
+#                         the uniaxial compression's cracks, the ice over the OpenFOAM strait (~6 min); their state
+#                         files go to postprocess/paraview/states/, the animations to results/paraview/.
 #   (The sweep figures come from scripts/sweep.sh and postprocess/plot_sweep.py: docs/validation.md.)
-#   bash postprocess/make_figures.sh [channel|drift|geometry|stability|cube_plate|failure_map|strait|field_sampling]...
-#   (default: all)
+#   bash postprocess/make_figures.sh [channel|drift|geometry|stability|cube_plate|failure_map|strait|field_sampling|
+#                                     paraview]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 which=("$@")
-[ ${#which[@]} -gt 0 ] || which=(channel drift geometry stability cube_plate failure_map strait field_sampling)
+[ ${#which[@]} -gt 0 ] || which=(channel drift geometry stability cube_plate failure_map strait field_sampling paraview)
 for w in "${which[@]}"; do
   case "$w" in
     channel)
@@ -74,7 +78,27 @@ for w in "${which[@]}"; do
       build-bench/tests/bench_failure_map -o docs/data/failure_map.json
       /usr/bin/python3 postprocess/plot_failure_map.py docs/data/failure_map.json -o docs/figures/failure_map.png
       ;;
-    *) echo "make_figures.sh: unknown figure '$w' (channel, drift, geometry, stability, cube_plate, failure_map)" >&2
+    paraview)
+      bash scripts/setup.sh paraview
+      [ -x build/polyfloe ] || bash scripts/build.sh
+      runs=results/paraview
+      mkdir -p postprocess/paraview/states
+      ./build/polyfloe run dem/scenes/channel.yaml -o "$runs/channel"
+      ./build/polyfloe run dem/scenes/uniaxial_compression.yaml -o "$runs/uniaxial"
+      bash of_cases/strait/Allrun  # renders of_cases/strait/paraview/ice_over_field.png itself
+      pv() { bash scripts/pvbatch.sh "postprocess/paraview/$1" "${@:2}" --size 1200 675; }
+      pv channel.py "$runs/channel" -o "$runs/pictures" --animation
+      pv contacts.py "$runs/channel" -o "$runs/pictures"
+      pv cracks.py "$runs/uniaxial" -o "$runs/pictures" --animation
+      pv ice_over_field.py of_cases/strait/ice/openfoam --field of_cases/strait/field.pvd -o "$runs/pictures" \
+        --animation
+      for k in channel contacts cracks ice_over_field; do
+        cp "$runs/pictures/$k.png" "docs/figures/paraview_$k.png"
+        cp "$runs/pictures/$k.pvsm" "postprocess/paraview/states/$k.pvsm"
+      done
+      ;;
+    *) echo "make_figures.sh: unknown figure '$w' (channel, drift, geometry, stability, cube_plate, failure_map, strait," \
+            "field_sampling, paraview)" >&2
        exit 2 ;;
   esac
 done

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The test job on a fresh Debian 12 machine: install dependencies, build, run every test (CTest labels unit,
-# validation, regression; the slow channel-scene test included).
+# The test job on a fresh Debian 12 machine: install dependencies (ParaView's pvbatch included), build, run every
+# test (CTest labels unit, validation, regression; the slow channel-scene test and the ParaView pictures included).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh paraview  # everything, and ParaView for the picture tests (tests/paraview/)
 POLYFLOE_BUILD_DIR="${POLYFLOE_BUILD_DIR:-build}" bash scripts/build.sh -DPOLYFLOE_WERROR=ON
 ctest --test-dir "${POLYFLOE_BUILD_DIR:-build}" --output-on-failure -j "$(nproc)" "$@"

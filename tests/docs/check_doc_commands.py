@@ -40,6 +40,8 @@ RULES = [
     (r"of_cases/\w+/All(run|clean)|of_cases/\w+/ice\.yaml", "skip",
      "OpenFOAM end to end: ctest -R 'test_strait_openfoam|test_openfoam_tutorials' (needs the case's field file)"),
     (r"\bCASE\b|field info field\.h5", "skip", "a template: CASE stands for your OpenFOAM case"),
+    (r"scripts/pvbatch\.sh|scripts/setup\.sh paraview|make_figures\.sh paraview", "skip",
+     "ParaView: ctest -R 'paraview_pictures|test_strait_openfoam' renders every script and loads every state file"),
     (r"scripts/(sweep|uniaxial_study)\.sh", "shorten-script", "scene runs shortened to 0.05 s"),
     (r"plot_frames\.py .* -t 0 150 300", lambda c: c.replace("-t 0 150 300", "-t 0 0.05"),
      "the runs above are shortened to 0.05 s: their frames are at 0 and 0.05 s"),

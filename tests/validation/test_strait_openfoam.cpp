@@ -88,6 +88,28 @@ TEST_F(Strait, AllrunLeavesTheFieldTheIceAndThePictures) {
   EXPECT_NE(slurp(case_ / "field.pvd").find("file=\"field/field_0000.vtr\""), std::string::npos);
 }
 
+// ParaView's picture of the ice over the current (postprocess/paraview/ice_over_field.py, rendered by Allrun where
+// ParaView is there: bash scripts/setup.sh paraview, which the test command runs): not blank (5 % of the map in
+// saturated colours: the current in the funnel and strait), and its state file, loaded by pvbatch against the case
+// folder, draws the same picture.
+TEST_F(Strait, ParaViewDrawsTheIceOverTheCurrent) {
+  const char* env = std::getenv("POLYFLOE_PARAVIEW_DIR");
+  const fs::path pv = env ? fs::path(env) : kSource / ".paraview";
+  if (!fs::exists(pv / "root" / "usr" / "bin" / "pvbatch")) GTEST_SKIP() << "no ParaView in " << pv;
+  const fs::path png = case_ / "paraview" / "ice_over_field.png";
+  ASSERT_TRUE(fs::is_regular_file(png)) << png;
+  ASSERT_TRUE(fs::is_regular_file(case_ / "paraview" / "ice_over_field.pvsm"));
+  const std::string check = "/usr/bin/python3 " + (kSource / "tests" / "paraview" / "check_image.py").string() + " ";
+  EXPECT_EQ(std::system((check + png.string() + " --coloured 0.05").c_str()), 0);
+  const fs::path again = case_ / "paraview" / "state.png";
+  const std::string render = "bash " + (kSource / "scripts" / "pvbatch.sh").string() + " " +
+                             (kSource / "postprocess" / "paraview" / "render_state.py").string() + " " +
+                             (case_ / "paraview" / "ice_over_field.pvsm").string() + " " + case_.string() + " -o " +
+                             again.string();
+  ASSERT_EQ(std::system(render.c_str()), 0);
+  EXPECT_EQ(std::system((check + again.string() + " --same-as " + png.string()).c_str()), 0);
+}
+
 TEST_F(Strait, TheImportedCurrentIsTheStraitFlow) {
   const io::FieldFile f = io::read_field_file(case_ / "field.h5");
   const forcing::GridData& g = f.grid;
