@@ -17,5 +17,21 @@ if [ -n "${DISPLAY:-}" ]; then
   exec "$pvbatch" "$@"
 fi
 # A display number of its own (free, from a random start): runs side by side, or one right after another, do not
-# meet on the same server.
-exec xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 1920x1080x24 -nolisten tcp" "$pvbatch" "$@"
+# meet on the same server. Under load a virtual display sometimes refuses the first connection ("bad X server
+# connection", pvbatch aborts before doing anything): then it is tried again, at most three times.
+for attempt in 1 2 3; do
+  log=$(mktemp)
+  set +e
+  xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 1920x1080x24 -nolisten tcp" "$pvbatch" "$@" \
+    2> >(tee "$log" >&2)
+  rc=$?
+  set -e
+  wait  # for tee
+  if [ "$rc" -ne 0 ] && [ "$attempt" -lt 3 ] && grep -q "bad X server connection\|cannot open display" "$log"; then
+    rm -f "$log"
+    echo "pvbatch.sh: the virtual display refused the connection; trying again" >&2
+    continue
+  fi
+  rm -f "$log"
+  exit "$rc"
+done

@@ -13,7 +13,7 @@ ts = list(r.TimestepValues)
 r.UpdatePipeline(ts[-1])
 d = servermanager.Fetch(r)
 motion = d.GetCellData().GetArray("motion")
-k = next(i for i in range(d.GetNumberOfCells()) if motion.GetValue(i) == 0)
+k = next(i for i in range(d.GetNumberOfCells()) if motion.GetTuple1(i) == 0)
 print(json.dumps({"times": ts, "cells": d.GetNumberOfCells(), "arrays": list(r.CellData.keys()), "body": k,
                   "point": list(d.GetCell(k).GetPoints().GetPoint(0)),
                   "velocity": list(d.GetCellData().GetArray("velocity").GetTuple3(k))}))
