@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <sstream>
 
 #include "contact/contact_law.h"
@@ -392,6 +393,20 @@ RunSummary Simulation::run() {
     world_.compute_forces(0.0);
     write_frame();
   }
+  // results.xmf describes the frames results.h5 holds: written with each checkpoint and at the end, and also when
+  // the run stops on an exception (unstable, the ice left the field, ...), whatever the checkpoint settings.
+  struct XdmfOnUnwind {
+    io::Hdf5Writer* h5;
+    fs::path file;
+    ~XdmfOnUnwind() {
+      if (h5 == nullptr || std::uncaught_exceptions() == 0) return;
+      try {
+        h5->write_xdmf(file);
+      } catch (const std::exception&) {
+        // the run's own error is the one to report
+      }
+    }
+  } xdmf_on_unwind{h5.get(), out / "results.xmf"};
   const std::uint64_t first_step = world_.step_count();
   io::Progress progress(t_end, options_.interactive, stderr, first_step);
   const double start_time = world_.time();

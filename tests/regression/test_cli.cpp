@@ -229,6 +229,17 @@ TEST(Cli, OverflowingDragStopsWithExitThree) {
                             " --set floes.0.velocity=[10,0] --set floes.0.position=[-1000,0]");
   EXPECT_EQ(r.code, 3) << r.output;
   fs::remove_all(out);
+  // Without checkpoints too, the stopped run leaves results.xmf describing the frames results.h5 holds (t = 0).
+  const Result again =
+      run_polyfloe("run " + kScene + " -o " + out.string() +
+                   " --set run.dt=100 --set run.duration=3000 --set forcing.ocean.skin_drag.enabled=true"
+                   " --set forcing.treatment=explicit --set output.checkpoint.every=0"
+                   " --set floes.0.velocity=[10,0] --set floes.0.position=[-1000,0]");
+  EXPECT_EQ(again.code, 3) << again.output;
+  const std::string xmf = polyfloe::tsupport::slurp(out / "results.xmf");
+  EXPECT_NE(xmf.find("<Time Value=\"0\"/>"), std::string::npos) << xmf;
+  EXPECT_EQ(xmf.find("frame 1"), std::string::npos) << xmf;
+  fs::remove_all(out);
 }
 
 // An output interval shorter than the step writes a frame at every step (the old schedule), says so, and finishes:
