@@ -426,7 +426,8 @@ void Hdf5Writer::write_xdmf(const std::filesystem::path& xmf) {
     x << "</Attribute>\n";
   };
   x << "<?xml version=\"1.0\" ?>\n<!-- PolyFloe: the frames of " << impl_->file.path().filename().string()
-    << " for ParaView (File > Open, \"XDMF Reader\"); written with each checkpoint, at the end of the run and when it stops early -->\n"
+    << " for ParaView (File > Open, \"XDMF Reader\"); written with each checkpoint, at the end of the run and when"
+       " it stops early -->\n"
     << "<Xdmf Version=\"2.0\">\n<Domain>\n<Grid Name=\"floes\" GridType=\"Collection\" "
        "CollectionType=\"Temporal\">\n";
   for (std::uint64_t k = 0; k < t; ++k) {
