@@ -3,9 +3,11 @@
 //
 //   a. A frictionless, perfectly elastic (e = 1) gas of 50 random convex floes of 3-8 corners, elongated up to 4:1,
 //      6-15 m across, moving at up to 3 m/s in a box of four fixed walls, at 40 steps per contact (the automatic
-//      step at 3 m/s), run to 1,000 collisions (contact starts, walls included) with the run guard of
-//      `polyfloe run` applied every step. Reference: the initial kinetic energy, at every contact-free step. The gas
-//      shares its energy out: its smallest floes reach 50-65 m/s.
+//      step at 3 m/s), run to 1,000 collisions (contact starts, walls included) with the contact-resolution guard
+//      of `polyfloe run` applied every step. Reference: the initial kinetic energy, at every contact-free step. The
+//      gas shares its energy out: small floes squeezed between two others reach 50-65 m/s (`polyfloe run`'s speed
+//      guard, 20 x the reference speed, would stop both runs there: a scene like this needs a higher
+//      run.reference_speed).
 //   b. Single frictionless e = 1 impacts of 10 m squares closing at 1 m/s, corner against corner (head on, and
 //      2 m off the line of centres) and corner against face (the corner's bisector along the normal, and yawed
 //      15 degrees), from 40 to 640 steps per contact. Reference: the kinetic energy before the impact; the
@@ -89,7 +91,7 @@ GasOutcome corner_rich_gas(contact::ForceModel model) {
   while (o.collisions < 1000 && o.steps < 4000000) {
     w.step(dt);
     ++o.steps;
-    try {  // what `polyfloe run` checks every step: a contact resolved by too few steps stops the run
+    try {  // a contact resolved by too few steps stops `polyfloe run` (its speed guard is left out: see above)
       run::check_contact_resolution(w, dt);
     } catch (const run::InstabilityError& e) {
       o.stopped = e.what();
