@@ -11,7 +11,23 @@
 #include <filesystem>
 #include <string>
 
+class vtkXMLWriter;
+
+namespace polyfloe::io {
+class OutputManifest;
+}
+
 namespace polyfloe::io::detail {
+
+// Shortest text that reads back to the same double.
+std::string exact(double x);
+// Writes `data` to `target` via a temporary sibling with `writer` (a vtkXML*Writer): binary appended,
+// zlib-compressed, 64-bit headers; throws IoError naming the file with VTK's messages.
+void write_xml(vtkXMLWriter* writer, vtkDataObject* data, const std::filesystem::path& target);
+// Removes DIR/<stem>/<stem>_NNNNNN<extension> for every N >= first: with a manifest, the listed ones only; without,
+// every such file (and hidden temporaries of such frames).
+void remove_frames_from(const std::filesystem::path& dir, const std::string& stem, const char* extension, int first,
+                        const OutputManifest* manifest);
 
 // "stem_NNNNNN.ext": the file name of frame `frame`.
 std::string frame_name(const std::string& stem, int frame, const char* extension = ".vtp");
