@@ -31,7 +31,7 @@ PARAVIEW_PACKAGES=(
   libgl2ps1.4 libglew2.2 libglx0 libopengl0 libgl1-mesa-dri libhdf5-openmpi-103-1 libjpeg62-turbo liblz4-1 liblzma5
   libnetcdf19 libogg0 libtheora0 libopenmpi3 libpng16-16 libpython3.11 libqt5core5a libqt5gui5 libqt5help5
   libqt5network5 libqt5opengl5 libqt5widgets5 libtiff6 libx11-6 libxcursor1 libxml2 zlib1g
-  xvfb xauth
+  xvfb
 )
 PARAVIEW_DEBS=(paraview python3-paraview)
 

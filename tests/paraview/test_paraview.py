@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """ParaView as the client, end to end: small runs of the channel scene (twice, into two folders) and of the frozen
 sheet's uniaxial compression, each picture script of postprocess/paraview/ rendered by ParaView's own pvbatch
-(scripts/pvbatch.sh, under xvfb-run), each picture checked by its pixels (not blank: coloured floes, arrows,
+(scripts/pvbatch.sh, on a virtual display), each picture checked by its pixels (not blank: coloured floes, arrows,
 cracks), each state file loaded by pvbatch against the other folder and checked to draw the same picture, the
 first frame's arrays as ParaView reads them, frame times on the interval's multiples, and an animation.
 
