@@ -14,7 +14,7 @@
 #                         data docs/data/field_sampling.json.
 #   paraview_*.png        ParaView's pictures (postprocess/paraview/, rendered by pvbatch; installs ParaView with
 #                         scripts/setup.sh paraview): the channel scene (floes by speed, velocity grid), its contacts,
-#                         the uniaxial compression's cracks, the ice over the OpenFOAM strait (~6 min); their state
+#                         the uniaxial compression's cracks, the ice over the OpenFOAM strait (~5 min); their state
 #                         files go to postprocess/paraview/states/, the animations to results/paraview/.
 #   (The sweep figures come from scripts/sweep.sh and postprocess/plot_sweep.py: docs/validation.md.)
 #   bash postprocess/make_figures.sh [channel|drift|geometry|stability|cube_plate|failure_map|strait|field_sampling|
