@@ -11,9 +11,11 @@ double ContactCache::previous(const PairKey& k) const {
   return previous(k, hint);
 }
 
-double ContactCache::previous(const PairKey& k, std::size_t& hint) const {
+double ContactCache::previous(const PairKey& k, std::size_t& hint, bool* found) const {
+  if (found) *found = true;
   if (hint < prev_.size() && prev_[hint].first == k) return prev_[hint++].second;
   prepare_lookups();
+  if (found) *found = false;
   if (index_.empty()) return 0.0;
   const std::size_t mask = index_.size() - 1;
   for (std::size_t h = PairKeyHash{}(k) & mask;; h = (h + 1) & mask) {
@@ -21,6 +23,7 @@ double ContactCache::previous(const PairKey& k, std::size_t& hint) const {
     if (i < 0) return 0.0;
     if (prev_[static_cast<std::size_t>(i)].first == k) {
       hint = static_cast<std::size_t>(i) + 1;
+      if (found) *found = true;
       return prev_[static_cast<std::size_t>(i)].second;
     }
   }

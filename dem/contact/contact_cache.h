@@ -31,7 +31,8 @@ class ContactCache {
   double previous(const PairKey& k) const;
   // The same, first trying the entry at `hint` and leaving `hint` just past the entry found: pairs come in nearly
   // the same order every step, so a loop that passes one hint along reads the store in order, without hashing.
-  double previous(const PairKey& k, std::size_t& hint) const;
+  // `found` (optional): whether the pair was stored by the previous step (in contact then).
+  double previous(const PairKey& k, std::size_t& hint, bool* found = nullptr) const;
   void prepare_lookups() const {
     if (index_stale_) rebuild_index();
   }

@@ -8,8 +8,10 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace polyfloe::contact {
 
@@ -25,7 +27,19 @@ enum class ForceModel {
              // 70,000 elastic contact-steps of random polygons)
   gradient,  // -F_n grad(depth) over both bodies' positions and rotations: exactly conservative with
              // W = 2/5 k_n d^2.5, but a flat face has no tilt stiffness (it settles on a corner)
+  foundation,  // the exact gradient of the elastic-foundation potential W = kappa ∫_{A∩B} (d_A + d_B) dA
+               // (contact/foundation.h), kappa = E*/(2 sqrt 2): continuously differentiable through every change
+               // of the overlap's shape, Hertz for round contacts, a restoring tilt stiffness for flat faces
 };
+
+// The scene files' name of a force model.
+inline const char* force_model_name(ForceModel m) {
+  switch (m) {
+    case ForceModel::gradient: return "gradient";
+    case ForceModel::foundation: return "foundation";
+    default: return "centroid";
+  }
+}
 
 struct ContactLawSettings {
   double youngs_modulus = 1.0e9;  // E [Pa]
@@ -51,6 +65,13 @@ double effective_mass(double m1, double m2);
 double restitution_from_damping(double zeta, DampingModel model);
 // Inverse of restitution_from_damping (bisection, |e error| < 1e-10).
 double damping_from_restitution(double e, DampingModel model);
+
+// Restitution of the nondimensional power-law impact X'' = -(X^(n-1) + zeta X^((n-2)/2) X'), X(0) = 0, X'(0) = 1:
+// a contact of stiffness K = (n - 1) X^(n-2) with the damping zeta / sqrt(n - 1) sqrt(m K) X', whose restitution
+// does not depend on the impact speed (n = 2: a linear spring, 2.5: Hertz, 3: a corner pressed into a face).
+double restitution_of_power_law(double zeta, double n);
+// Inverse of restitution_of_power_law in zeta.
+double power_law_damping(double e, double n);
 
 // Duration of an undamped Hertz impact m* x'' = -k_n x^1.5 at impact speed v:
 // t_c = 2.9432 x_max / v = 3.2181 (m* / k_n)^(2/5) v^(-1/5) [s].
@@ -78,6 +99,8 @@ class ContactLaw {
   explicit ContactLaw(const ContactLawSettings& s);
   const ContactLawSettings& settings() const { return s_; }
   double effective_modulus() const { return e_star_; }
+  // kappa of the foundation force model: E*/(2 sqrt 2), so that round contacts follow Hertz [Pa].
+  double foundation_modulus() const { return e_star_ / (2.0 * std::numbers::sqrt2); }
   PairCoefficients coefficients(double r_a, double r_b, double m_a, double m_b) const;
   // depth d [m], depth_rate d_dot [m/s] (> 0 while approaching), tangential slip velocity of B relative to A along
   // t [m/s], previous spring s [m], time step [s].
@@ -88,9 +111,45 @@ class ContactLaw {
     const double sqrt_d = std::sqrt(depth);
     const double damp_factor = s_.damping == DampingModel::paper ? sqrt_d : std::sqrt(sqrt_d);
     f.normal = std::max(0.0, c.k_n * depth * sqrt_d + c.damping * damp_factor * depth_rate);
-    const double k_t = c.k_s * sqrt_d;  // k_s |d|^(kappa - 1)
+    friction(c.mu, c.k_s * sqrt_d, slip_velocity, spring, dt, f);  // k_t = k_s |d|^(kappa - 1)
+    return f;
+  }
+  // The same law for a contact given by its elastic force and stiffness rather than a Hertz depth (the foundation
+  // force model): elastic normal force F_e [N], stiffness K = dF_e/d(approach) [N/m], approach rate [m/s] (> 0
+  // closing). A Hertz contact (F_e = k_n d^1.5, K = 1.5 k_n d^0.5) gets exactly evaluate()'s forces: the damping
+  // c d^p d_dot with d^p written through K, and the tangential stiffness k_s d^0.5 = K / (1.5 (2 + 2 nu)).
+  // `exponent`: n of the power law W ∝ approach^n the contact follows locally (2.5 for Hertz). The speed-independent
+  // damping is power_law_damping(e, n) / sqrt(n - 1) sqrt(m* K) (for n = 2.5 exactly evaluate()'s); the paper's
+  // c d^0.5 d_dot keeps its form with d^0.5 = K / (1.5 k_n). `damping_scale` multiplies the damping force (the
+  // first step of a contact: see contact_stage.cpp).
+  ContactForce evaluate_stiffness(const PairCoefficients& c, double elastic, double stiffness, double exponent,
+                                  double rate, double slip_velocity, double spring, double dt,
+                                  double damping_scale = 1.0) const {
+    ContactForce f;
+    const double root = stiffness / (1.5 * c.k_n);  // d^0.5 of the Hertz contact of this stiffness
+    const double damping = s_.damping == DampingModel::paper
+                               ? c.damping * root
+                               : power_damping(exponent) * std::sqrt(c.m_star * stiffness);
+    f.normal = std::max(0.0, elastic + damping_scale * damping * rate);
+    friction(c.mu, c.k_s * root, slip_velocity, spring, dt, f);
+    return f;
+  }
+
+ private:
+  // power_law_damping(e, n) / sqrt(n - 1) for this law's e, interpolated in n over [2, 3.5] (clamped there).
+  double power_damping(double n) const {
+    const double x = std::clamp((n - 2.0) / kPowerStep, 0.0, static_cast<double>(kPowerPoints - 1));
+    const int i = std::min(static_cast<int>(x), kPowerPoints - 2);
+    return power_zeta_[i] + (x - i) * (power_zeta_[i + 1] - power_zeta_[i]);
+  }
+  static constexpr int kPowerPoints = 7;
+  static constexpr double kPowerStep = 0.25;
+  std::array<double, kPowerPoints> power_zeta_{};
+
+  // The tangential spring of stiffness k_t advanced by the slip, capped by Coulomb at mu f.normal.
+  static void friction(double mu, double k_t, double slip_velocity, double spring, double dt, ContactForce& f) {
     double s = spring + slip_velocity * dt;
-    const double limit = c.mu * f.normal;
+    const double limit = mu * f.normal;
     double ft = -k_t * s;
     if (std::abs(ft) > limit) {
       f.sliding = true;
@@ -99,10 +158,8 @@ class ContactLaw {
     }
     f.tangential = ft;
     f.spring = s;
-    return f;
   }
 
- private:
   ContactLawSettings s_;
   double e_star_ = 0.0;
   double zeta_ = 0.0;  // nondimensional damping for the target restitution

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/foundation.h"
 #include "geometry/inside_edges.h"
 
 namespace polyfloe::contact {
@@ -174,7 +175,7 @@ OverlapTopology read_topology(const ClipPolygon& poly, int na, int nb) {
 
 // Area, centroid, chord, depth and (with_gradient) the gradient terms of the overlap polygon `poly`.
 bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const ClipPolygon& poly,
-             PlanarContact& out, bool with_gradient);
+             PlanarContact& out, OverlapTerms terms);
 
 // A clipped by B's edge lines into `buf` (one of the two buffers); false when they do not overlap.
 // `apart`: set to the edge of B whose line the whole of A lies outside, where the clipping ends there before any cut;
@@ -205,7 +206,7 @@ void find_apart_edge(std::span<const Vec2> a, std::span<const Vec2> b, const Vec
 
 }  // namespace
 
-bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out, bool with_gradient,
+bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out, OverlapTerms terms,
                     OverlapTopology* topology) {
   // Work relative to A's first vertex: keeps precision for floes far from the origin.
   const Vec2 origin = a[0];
@@ -237,7 +238,7 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     }
     if (!poly) return false;
   }
-  const bool hit = measure(a, b, origin, *poly, out, with_gradient);
+  const bool hit = measure(a, b, origin, *poly, out, terms);
   if (!hit && topology) *topology = {};
   return hit;
 }
@@ -361,7 +362,7 @@ const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const 
 }
 
 bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const ClipPolygon& poly,
-             PlanarContact& out, bool with_gradient) {
+             PlanarContact& out, OverlapTerms terms) {
   const int na = static_cast<int>(a.size());
   const int nb = static_cast<int>(b.size());
   // A's edge i runs from a[i] to a[i+1]; B's edge j from b[j-1] to b[j] (the order the clipping visits them).
@@ -402,6 +403,16 @@ bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origi
   out.moment = 0.0;
   out.ga = out.gb = Vec2{0.0, 0.0};
   out.ha = out.hb = 0.0;
+  out.energy = out.load_moment = out.extent = out.breadth = 0.0;
+  out.load = Vec2{0.0, 0.0};
+  auto foundation = [&] {
+    const detail::FoundationTerms f = detail::foundation_terms(a, b, origin, cur->p, cur->edge, n, g);
+    out.energy = f.energy;
+    out.load = f.force;
+    out.load_moment = f.moment;
+    out.extent = f.extent;
+    out.breadth = f.breadth;
+  };
   if (!(len > 1e-9 * scale)) {
     // One polygon inside the other: no boundary crossing to define a chord. Or one of them, far smaller than its
     // distance from `origin` (by 1/epsilon), collapsed there by round-off to a segment or a point that cut a sliver
@@ -415,6 +426,7 @@ bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origi
     if (collapsed(a) || collapsed(b)) return false;
     out.chord = 0.0;
     least_penetration(a, b, out);
+    if (terms == OverlapTerms::foundation) foundation();
     return true;
   }
   out.chord = len;
@@ -425,7 +437,8 @@ bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origi
   // edge gave 1e-17 m slivers: tests/unit/test_contact_failure_modes.cpp): no contact.
   const double coords = std::max({origin.cwiseAbs().maxCoeff(), p0.cwiseAbs().maxCoeff(), scale});
   if (!(out.depth > 64.0 * std::numeric_limits<double>::epsilon() * coords)) return false;
-  if (!with_gradient) return true;
+  if (terms == OverlapTerms::foundation) foundation();
+  if (terms != OverlapTerms::depth_gradient) return true;
   // Gradient terms: the moment of the ∂A part (averaged with minus the ∂B part) and the sliding crossings.
   double m_a = 0.0, m_b = 0.0;
   for (int k = 0; k < n; ++k) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <algorithm>
 #include <limits>
+#include <numbers>
 #include <utility>
 
 #include "dynamics/parallel.h"
@@ -316,7 +317,7 @@ const std::vector<ContactRecord>& World::contacts() const {
     for (const PairResult& r : pair_results_)
       if (r.hit)
         contacts_.push_back({slot_static_[r.a].body, slot_static_[r.b].body, r.g, r.cf.normal, r.cf.tangential,
-                             r.cf.sliding, r.f});
+                             r.cf.sliding, r.f, r.energy});
     contacts_ready_ = true;
   }
   return contacts_;
@@ -339,6 +340,11 @@ void World::contact_forces(double dt) {
   pair_results_.resize(np);
   pair_hit_.resize(np);
   const bool gradient = law_.settings().force_model == contact::ForceModel::gradient;
+  const bool foundation = law_.settings().force_model == contact::ForceModel::foundation;
+  const contact::OverlapTerms terms = gradient     ? contact::OverlapTerms::depth_gradient
+                                      : foundation ? contact::OverlapTerms::foundation
+                                                   : contact::OverlapTerms::basic;
+  const double kappa = law_.foundation_modulus();
   const bool gjk = settings_.narrow_phase == PlanarNarrowPhase::gjk_epa;
   const int np_int = static_cast<int>(np);
   cache_hint_.assign(static_cast<std::size_t>(threads_), CacheHint{});
@@ -380,8 +386,16 @@ void World::contact_forces(double dt) {
     } else {
       // The topology this listed pair's overlap had at its last contact (see planar_overlap), kept for the next.
       contact::OverlapTopology* topology = entry >= 0 ? &skin_topo_[static_cast<std::size_t>(entry)] : nullptr;
-      if (!contact::planar_overlap(verts_a, verts_b, g, gradient, topology)) continue;
+      if (!contact::planar_overlap(verts_a, verts_b, g, terms, topology)) continue;
       r.reused = topology && topology->reused;
+    }
+    // The foundation model's normal is the direction of its force on b; no force (one body centred inside the
+    // other, by symmetry): no contact.
+    double load = 0.0;
+    if (foundation) {
+      load = g.load.norm();
+      if (!(load > 0.0) || !(g.energy > 0.0)) continue;
+      g.normal = g.load / load;
     }
 
     const SlotState& sa = slot_state_[a];
@@ -393,15 +407,33 @@ void World::contact_forces(double dt) {
     const Vec2 v_rel = vb - va;
 
     const Vec2 da = -ra, db = -rb;  // body centres relative to the centroid
+    // (symmetric in the two bodies, bit for bit: the list's order of the pair does not matter)
+    contact::PairCoefficients k = entry >= 0 ? skin_coef_[static_cast<std::size_t>(entry)]
+                                             : law_.coefficients(A.radius, B.radius, A.mass, B.mass);
     // Normal direction on b (per unit normal force) and its moment about b's centre, and the depth rate.
     Vec2 dir_b;
-    double arm_b, rate;
+    double arm_b, rate, elastic = 0.0, stiffness = 0.0, exponent = 2.5;
     if (gradient) {
       // The force is -F_n grad(depth) (see narrow_phase_planar.h): conservative with W = 2/5 k_n d^2.5.
       const contact::DepthGradient dg = contact::depth_gradient(g, sa.pos, sb.pos);
       dir_b = -dg.grad_b;
       arm_b = -dg.grad_wb;
       rate = dg.grad_a.dot(sa.vel) + dg.grad_wa * sa.omega + dg.grad_b.dot(sb.vel) + dg.grad_wb * sb.omega;
+      // Coulomb caps friction by the normal component of the contact force; in the gradient model that is
+      // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
+      // penetration).
+      k.mu *= std::max(0.0, dir_b.dot(g.normal));
+    } else if (foundation) {
+      // The elastic wrench is kappa (g.load, g.load_moment) (contact/foundation.h); per unit normal force, its
+      // direction and moment. The approach rate along it: dW/dt = -F_e rate. Locally the contact follows a power
+      // law W ∝ approach^n, n = F_e extent / W (2 for a flat face, 2.5 round, 3 a corner in a face; exact for
+      // those), and its stiffness is K = (n - 1) / n F_e^2 / W; the damping and the tangential spring follow them.
+      elastic = kappa * load;
+      exponent = std::clamp(load * g.extent / g.energy, 2.0, 3.5);
+      stiffness = (exponent - 1.0) / exponent * elastic * elastic / (kappa * g.energy);
+      dir_b = g.normal;
+      arm_b = (g.load_moment + geometry::cross(rb, g.load)) / load;
+      rate = -(dir_b.dot(v_rel) + g.load_moment / load * (sb.omega - sa.omega));
     } else {
       dir_b = g.normal;
       arm_b = geometry::cross(rb, g.normal);
@@ -409,24 +441,39 @@ void World::contact_forces(double dt) {
     }
 
     const contact::PairKey key{A.id, B.id};
-    // (symmetric in the two bodies, bit for bit: the list's order of the pair does not matter)
-    contact::PairCoefficients k = entry >= 0 ? skin_coef_[static_cast<std::size_t>(entry)]
-                                             : law_.coefficients(A.radius, B.radius, A.mass, B.mass);
-    // Coulomb caps friction by the normal component of the contact force; in the gradient model that is
-    // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
-    // penetration).
-    if (gradient) k.mu *= std::max(0.0, dir_b.dot(g.normal));
+    // The spring the previous step stored for this pair, and whether it did (the pair touched then).
+    bool continuing = false;
     const double spring =
         by_entry  // (every pair of candidate_pairs() has its list entry)
-            ? (skin_store_gen_[static_cast<std::size_t>(entry)] == history_gen_
+            ? ((continuing = skin_store_gen_[static_cast<std::size_t>(entry)] == history_gen_)
                    ? cache_.stored(skin_store_[static_cast<std::size_t>(entry)])
                    : 0.0)
-            : cache_.previous(key, cache_hint_[polyfloe_thread_index()].at);
-    r.cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), spring, dt);
-    // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
-    const double km = k.k_per_m;
-    r.v2 = rate * rate + 0.8 * km * g.depth * g.depth * std::sqrt(g.depth);
-    r.q2 = r.v2 * (km * km) * (km * km);
+            : cache_.previous(key, cache_hint_[polyfloe_thread_index()].at, &continuing);
+    if (foundation) {
+      // A contact's first step: it began tau = extent / rate before now (at most a step), but this step's force
+      // stands for the half step either side of now. The elastic force starts from zero and the error that leaves
+      // is of second order; the damping force jumps to its value where the force is linear (n = 2), so it is
+      // scaled to the time it really acted: (dt/2 + tau) / dt.
+      const double damping_scale =
+          continuing ? 1.0 : 0.5 + (rate > 0.0 ? std::min(g.extent, rate * dt) / (rate * dt) : 1.0);
+      r.cf = law_.evaluate_stiffness(k, elastic, stiffness, exponent, rate, v_rel.dot(t), spring, dt,
+                                     damping_scale);
+      // The contact's duration from its stiffness now: t = g pi sqrt(m* / K), g = 1 for a linear spring (exact),
+      // 1.283 for Hertz (its t_c at its deepest), between them linear in n. As q2 below:
+      // (3.2181 / t)^10 = (x K / m*)^5, x = (3.2181 / (g pi))^2.
+      const double gpi = std::numbers::pi * (1.0 + 0.5652 * (std::min(exponent, 2.5) - 2.0));
+      const double x = (3.2181 / gpi) * (3.2181 / gpi) * stiffness / k.m_star;
+      r.energy = kappa * g.energy;
+      r.v2 = rate * rate + 2.0 * r.energy / k.m_star;  // the impact speed of this energy
+      r.q2 = x * x * x * x * x;
+    } else {
+      r.cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), spring, dt);
+      // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
+      const double km = k.k_per_m;
+      r.energy = 0.4 * k.k_n * g.depth * g.depth * std::sqrt(g.depth);
+      r.v2 = rate * rate + 0.8 * km * g.depth * g.depth * std::sqrt(g.depth);
+      r.q2 = r.v2 * (km * km) * (km * km);
+    }
 
     // On b: the normal part, and friction along t at the centroid; a gets the opposite force and the torque that
     // keeps the total angular momentum unchanged.

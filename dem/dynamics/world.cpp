@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <numbers>
 #include <string>
 
 namespace polyfloe::dynamics {
@@ -22,6 +23,9 @@ World::World(const WorldSettings& settings)
     throw std::invalid_argument("DriftSettings::update_every = " + std::to_string(d.update_every) +
                                 " needs the semi-implicit treatment (the linear model between full evaluations "
                                 "is its damping matrix); use 1 with the explicit one");
+  if (settings.contact.force_model == contact::ForceModel::foundation && settings.narrow_phase == PlanarNarrowPhase::gjk_epa)
+    throw std::invalid_argument("the foundation force model needs the exact narrow phase (it integrates over the "
+                                "overlap polygon)");
 }
 
 int World::add_body(const BodyDesc& d) {
@@ -269,7 +273,7 @@ World::ContactResolution World::shortest_active_contact() const {
   return r;
 }
 
-double World::shortest_contact_duration(double speed) const {
+double World::shortest_hertz_contact_duration(double speed) const {
   double m_min = contact::kInfinite, r_min = contact::kInfinite;
   for (std::size_t i = 0; i < size(); ++i) {
     if (!is_dynamic_[i]) continue;
@@ -280,6 +284,25 @@ double World::shortest_contact_duration(double speed) const {
   // Two of the lightest, smallest floes meeting: m* = m/2, R* = R/2.
   const double k_n = 4.0 / 3.0 * law_.effective_modulus() * std::sqrt(0.5 * r_min);
   return contact::hertz_contact_duration(k_n, 0.5 * m_min, speed);
+}
+
+double World::shortest_flat_contact_duration() const {
+  if (law_.settings().force_model != contact::ForceModel::foundation) return contact::kInfinite;
+  // A flat face pressed on a face is a linear spring 2 kappa L (contact/foundation.h): half a period
+  // pi sqrt(m* / (2 kappa L)) at any speed. The shortest: a floe's longest edge against an equal floe's, m* = m/2.
+  double t = contact::kInfinite;
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (!is_dynamic_[i]) continue;
+    const auto& v = shape_[i]->vertices();
+    double longest = 0.0;
+    for (std::size_t k = 0; k < v.size(); ++k) longest = std::max(longest, (v[(k + 1) % v.size()] - v[k]).norm());
+    t = std::min(t, std::numbers::pi * std::sqrt(0.5 * mass_[i] / (2.0 * law_.foundation_modulus() * longest)));
+  }
+  return t;
+}
+
+double World::shortest_contact_duration(double speed) const {
+  return std::min(shortest_hertz_contact_duration(speed), shortest_flat_contact_duration());
 }
 
 WorldState World::state() const {

@@ -66,6 +66,7 @@ struct ContactRecord {
   bool sliding = false;
   Vec2 force{0.0, 0.0};        // total contact force on b [N] (force_model gradient: the normal part follows
                                // the depth gradient, close to but not exactly along the normal)
+  double energy = 0.0;         // elastic energy stored in the contact [J] (2/5 k_n d^2.5; foundation: kappa I)
   Vec2 force_on_b() const { return force; }
 };
 
@@ -202,8 +203,12 @@ class World {
   double dynamic_mass() const { return dynamic_mass_; }  // [kg], summed in body order
 
   // Duration of the shortest Hertz impact between the bodies present (smallest dynamic mass and radius) at
-  // `speed` [m/s]; the time step is a fraction of it [s].
+  // `speed` [m/s]; with the foundation force model also of the stiffest flat-face contact (a floe's longest edge
+  // on an equal floe's), at any speed. The time step is a fraction of it [s].
   double shortest_contact_duration(double speed) const;
+  // Its two parts: the Hertz impact at `speed`, and the flat-face contact (infinite unless the foundation model) [s].
+  double shortest_hertz_contact_duration(double speed) const;
+  double shortest_flat_contact_duration() const;
 
   const WorldSettings& settings() const { return settings_; }
   const contact::ContactLaw& contact_law() const { return law_; }
@@ -424,6 +429,7 @@ class World {
     Vec2 f{0.0, 0.0};  // on b
     double tau_b = 0.0, tau_a = 0.0;
     double v2 = 0.0, q2 = 0.0;
+    double energy = 0.0;  // [J]
   };
   std::vector<PairResult> pair_results_;
   std::vector<std::uint8_t> pair_hit_;  // pair_results_[p].hit, packed: what the sum's first pass reads

@@ -107,7 +107,7 @@ std::string resolved_yaml(const Scene& s) {
     << (c.damping == contact::DampingModel::paper ? "paper" : "speed_independent") << "\n"
     << "  narrow_phase: " << (s.world.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa ? "gjk_epa" : "exact")
     << "  # level floes: exact overlap polygon, or the paper's GJK-EPA (comparison)\n"
-    << "  force_model: " << (c.force_model == contact::ForceModel::gradient ? "gradient" : "centroid") << "\n"
+    << "  force_model: " << contact::force_model_name(c.force_model) << "\n"
     << "  broad_phase_cell: "
     << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n"
     << "  broad_phase_skin: "

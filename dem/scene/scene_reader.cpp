@@ -101,7 +101,14 @@ void read_contact(MapReader m, dynamics::WorldSettings& w) {
   m.choice("narrow_phase", w.narrow_phase,
            {{"exact", dynamics::PlanarNarrowPhase::exact}, {"gjk_epa", dynamics::PlanarNarrowPhase::gjk_epa}});
   m.choice("force_model", w.contact.force_model,
-           {{"centroid", contact::ForceModel::centroid}, {"gradient", contact::ForceModel::gradient}});
+           {{"centroid", contact::ForceModel::centroid},
+            {"gradient", contact::ForceModel::gradient},
+            {"foundation", contact::ForceModel::foundation}});
+  if (w.contact.force_model == contact::ForceModel::foundation && w.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa) {
+    const auto f = m.take("narrow_phase");
+    m.context().fail(f ? *f : m.self(), "force_model 'foundation' integrates over the overlap polygon, which only "
+                                        "the 'exact' narrow phase finds: set narrow_phase: exact, or another force_model");
+  }
   std::optional<double> cell;
   if (w.broad_phase_cell > 0.0) cell = w.broad_phase_cell;
   m.number_or_auto("broad_phase_cell", cell, positive("m"));

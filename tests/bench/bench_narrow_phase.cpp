@@ -169,14 +169,15 @@ std::vector<std::span<const Vec2>> spans_of(const PairSet& s) {
 
 // The timed loop: planar_overlap on pair after pair (with each pair's kept topology, when given).
 void time_pairs(benchmark::State& state, const std::vector<std::span<const Vec2>>& polys,
-                const std::vector<contact::OverlapTopology>* kept) {
+                const std::vector<contact::OverlapTopology>* kept,
+                contact::OverlapTerms terms = contact::OverlapTerms::basic) {
   contact::PlanarContact c;
   std::uint32_t k = 0;
   std::int64_t hits = 0;
   const double cpu0 = thread_cpu_seconds();
   for (auto _ : state) {
     contact::OverlapTopology t = kept ? (*kept)[k] : contact::OverlapTopology{};
-    const bool hit = contact::planar_overlap(polys[2 * k], polys[2 * k + 1], c, false, kept ? &t : nullptr);
+    const bool hit = contact::planar_overlap(polys[2 * k], polys[2 * k + 1], c, terms, kept ? &t : nullptr);
     benchmark::DoNotOptimize(hit);
     benchmark::DoNotOptimize(c);
     benchmark::DoNotOptimize(t);
@@ -191,20 +192,22 @@ void time_pairs(benchmark::State& state, const std::vector<std::span<const Vec2>
   state.counters["vertices"] = static_cast<double>(state.range(0));
 }
 
-void run(benchmark::State& state, bool overlapping) {
+void run(benchmark::State& state, bool overlapping, contact::OverlapTerms terms = contact::OverlapTerms::basic) {
   const int n = static_cast<int>(state.range(0));
   const PairSet& s = pairs_for(n, overlapping);
   if (const std::string err = check_pairs(s, overlapping); !err.empty()) {
     state.SkipWithError(err.c_str());
     return;
   }
-  time_pairs(state, spans_of(s), nullptr);
+  time_pairs(state, spans_of(s), nullptr, terms);
 }
 
 void BM_PlanarOverlap(benchmark::State& state) { run(state, true); }
 void BM_PlanarSeparated(benchmark::State& state) { run(state, false); }
+// The same with the foundation force model's terms (its energy, load and moment, and the overlap's extent).
+void BM_PlanarOverlapFoundation(benchmark::State& state) { run(state, true, contact::OverlapTerms::foundation); }
 
-void BM_PlanarOverlapKept(benchmark::State& state) {
+void kept_pairs(benchmark::State& state, contact::OverlapTerms terms) {
   const int n = static_cast<int>(state.range(0));
   const PairSet& s = pairs_for(n, true);
   if (const std::string err = check_pairs(s, true); !err.empty()) {
@@ -242,9 +245,12 @@ void BM_PlanarOverlapKept(benchmark::State& state) {
     }
     accepted += t.reused;
   }
-  time_pairs(state, polys, &kept);
+  time_pairs(state, polys, &kept, terms);
   state.counters["kept_fraction"] = static_cast<double>(accepted) / kPairs;
 }
+
+void BM_PlanarOverlapKept(benchmark::State& state) { kept_pairs(state, contact::OverlapTerms::basic); }
+void BM_PlanarOverlapKeptFoundation(benchmark::State& state) { kept_pairs(state, contact::OverlapTerms::foundation); }
 
 const char* kMethodNames[] = {"planar", "gjk2d", "sat3d", "ccd_gjk_epa", "ccd_gjk_epa_tiebreak", "ccd_mpr"};
 
@@ -310,5 +316,7 @@ BENCHMARK(BM_Method)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {12}})->MinTime(0.3);
 BENCHMARK(BM_PlanarOverlap)->Arg(4)->Arg(8)->Arg(12)->Arg(20)->MinTime(0.3);
 BENCHMARK(BM_PlanarSeparated)->Arg(4)->Arg(8)->Arg(12)->Arg(20)->MinTime(0.3);
 BENCHMARK(BM_PlanarOverlapKept)->Arg(4)->Arg(8)->Arg(12)->Arg(20)->MinTime(0.3);
+BENCHMARK(BM_PlanarOverlapFoundation)->Arg(4)->Arg(12)->Arg(20)->MinTime(0.3);
+BENCHMARK(BM_PlanarOverlapKeptFoundation)->Arg(4)->Arg(12)->Arg(20)->MinTime(0.3);
 
 BENCHMARK_MAIN();

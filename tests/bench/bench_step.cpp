@@ -105,12 +105,13 @@ const Pack& pack_for(int n, Kind kind) {
   return cache.emplace(std::pair{n, kind}, make_pack(n, ps, kind == Kind::free ? 11u : 7u)).first->second;
 }
 
-void run(benchmark::State& state, Kind kind) {
+void run(benchmark::State& state, Kind kind, contact::ForceModel model = contact::ForceModel::centroid) {
   const int n = static_cast<int>(state.range(0));
   const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : 1;
   const bool dense = kind != Kind::free;
   const Pack& pack = pack_for(n, kind);
   dynamics::WorldSettings ws;
+  ws.contact.force_model = model;
   ws.drift.ocean = forcing::make_field(forcing::FieldSpec::uniform({0.2, 0.05}));
   ws.drift.wind = forcing::make_field(forcing::FieldSpec::uniform({8.0, 6.0}));
   if (kind == Kind::dense_contact || kind == Kind::dense_contact_sorted)
@@ -196,6 +197,8 @@ void run(benchmark::State& state, Kind kind) {
 }
 
 void BM_DensePack(benchmark::State& state) { run(state, Kind::dense); }
+// The same pack under the foundation force model, at its own (smaller) automatic step.
+void BM_DensePackFoundation(benchmark::State& state) { run(state, Kind::dense, contact::ForceModel::foundation); }
 void BM_DensePackSorted(benchmark::State& state) { run(state, Kind::dense_sorted); }
 void BM_FreeDrift(benchmark::State& state) { run(state, Kind::free); }
 void BM_DensePackContactOnly(benchmark::State& state) { run(state, Kind::dense_contact); }
@@ -240,6 +243,7 @@ BENCHMARK(BM_DensePack)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMil
 BENCHMARK(BM_DensePack)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePack)->Args({15000, 2})->Iterations(100)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DensePack)->Args({150000, 2})->Iterations(10)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DensePackFoundation)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackSorted)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackSorted)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackSorted)->Args({15000, 2})->Iterations(100)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -10,8 +10,8 @@
 //   circumradius >= equivalent radius; the stored vertices centred on their area centroid.
 // Two accepted polygons (at most kMaxPolygonVertices corners) are placed at fuzzer-chosen positions and yaws; when
 // both placed outlines are still valid (the narrow phase's precondition) planar_overlap() must give, both ways:
-//   finite outputs (with and without the gradient terms, and depth_gradient()); a unit normal; area > 0 and at
-//   most the smaller polygon's area; the overlap centroid inside both bounding boxes; the same area A-B and B-A;
+//   finite outputs (with and without the gradient terms, and depth_gradient(); the foundation terms, with the same
+//   area and depth); a unit normal; area > 0 and at most the smaller polygon's area; the overlap centroid inside both bounding boxes; the same area A-B and B-A;
 //   no contact when the bounding boxes are apart; a contact when a point lies well inside both polygons;
 //   the same bits when given a kept topology - a fuzzer-chosen one, or the one the call itself returned.
 // A violated check prints what failed and aborts (a crash for libFuzzer, which saves the input).
@@ -264,6 +264,14 @@ void check_pair(const Placed& a, const Placed& b, bool with_gradient, const cont
   if (with_gradient && hit_ab) {
     const contact::DepthGradient g = contact::depth_gradient(ab, a.v.front(), b.v.front());
     CHECK(finite(g.grad_a) && finite(g.grad_b) && std::isfinite(g.grad_wa) && std::isfinite(g.grad_wb));
+  }
+  // The foundation force model's terms: the same contact, finite energy, load, moment and extents.
+  contact::PlanarContact fd;
+  CHECK(contact::planar_overlap(a.v, b.v, fd, contact::OverlapTerms::foundation) == hit_ab);
+  if (hit_ab) {
+    CHECK(fd.area == ab.area && fd.depth == ab.depth);
+    CHECK(std::isfinite(fd.energy) && finite(fd.load) && std::isfinite(fd.load_moment));
+    CHECK(std::isfinite(fd.extent) && fd.extent >= 0.0 && std::isfinite(fd.breadth) && fd.breadth >= 0.0);
   }
   // Boxes apart by more than round-off: no contact.
   const bool apart = a.box.hi.x() + len_tol < b.box.lo.x() || b.box.hi.x() + len_tol < a.box.lo.x() ||

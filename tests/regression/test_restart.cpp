@@ -249,32 +249,55 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-TEST(Restart, KilledChannelRunRestartsBitwise) {
-  // The channel scene shortened: 1,158 floes and walls, contacts with friction history, all drift terms, the
-  // channel monitor and the velocity grid; frames every 0.25 s, a checkpoint every 2 frames.
-  const std::vector<std::string> args{"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=6",
-                                      "--set", "output.interval=0.25", "--set", "output.checkpoint.every=2",
-                                      "--set", "output.checkpoint.keep=2"};
-  const fs::path base = scratch("channel");
+namespace {
+
+// Runs `args` whole, then again killed `kills` times and restarted, into scratch(name); the two must be the same
+// bits. Returns the killed run's folder (removed with the base by the caller).
+fs::path killed_run_restarts_bitwise(const std::string& name, const std::vector<std::string>& args, int kills,
+                                     double duration, std::uint64_t seed, int min_kills, int min_restarts) {
+  const fs::path base = scratch(name);
   fs::remove_all(base);
   fs::create_directories(base);
   std::vector<std::string> a = args;
   a.insert(a.end(), {"-o", (base / "whole").string()});
   const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_EQ(run_to_end(a, base / "whole.log"), 0) << slurp(base / "whole.log");
+  EXPECT_EQ(run_to_end(a, base / "whole.log"), 0) << slurp(base / "whole.log");
   const double wall = seconds_since(t0);
-
-  const Interrupted r = run_with_kills(args, base / "killed", 4, wall, 6.0, 20261122);
+  const Interrupted r = run_with_kills(args, base / "killed", kills, wall, duration, seed);
   std::printf("uninterrupted run %.2f s wall; %d kills hit the running simulation, %d restarts\n", wall, r.kills,
               r.restarts);
-  EXPECT_GE(r.kills, 3);
-  EXPECT_GE(r.restarts, 2);
+  EXPECT_GE(r.kills, min_kills);
+  EXPECT_GE(r.restarts, min_restarts);
   expect_same_run(base / "whole", base / "killed");
+  return base;
+}
+
+}  // namespace
+
+TEST(Restart, KilledChannelRunRestartsBitwise) {
+  // The channel scene shortened: 1,158 floes and walls, contacts with friction history, all drift terms, the
+  // channel monitor and the velocity grid; frames every 0.25 s, a checkpoint every 2 frames.
+  const fs::path base = killed_run_restarts_bitwise(
+      "channel",
+      {"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=6", "--set", "output.interval=0.25", "--set",
+       "output.checkpoint.every=2", "--set", "output.checkpoint.keep=2"},
+      4, 6.0, 20261122, 3, 2);
   // Checkpoints are pruned to the newest `keep`; the final one is among them.
   int count = 0;
   for (const auto& e : fs::directory_iterator(base / "killed" / "checkpoints")) count += e.path().filename().string().rfind("checkpoint_", 0) == 0;
   EXPECT_EQ(count, 2);
   fs::remove_all(base);
+}
+
+TEST(Restart, KilledFoundationForceModelRunRestartsBitwise) {
+  // The channel scene under the foundation force model, whose first contact step depends on whether the pair
+  // touched the step before (the contact history a checkpoint carries): 1.5 s, a checkpoint every 2 frames.
+  fs::remove_all(killed_run_restarts_bitwise(
+      "foundation",
+      {"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=1.5", "--set",
+       "contact.force_model=foundation", "--set", "output.interval=0.125", "--set", "output.checkpoint.every=2",
+       "--set", "output.checkpoint.keep=2"},
+      3, 1.5, 20261126, 2, 1));
 }
 
 TEST(Restart, KilledFrozenSheetRunRestartsBitwise) {

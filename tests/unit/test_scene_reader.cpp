@@ -293,6 +293,14 @@ TEST(SceneErrors, WrongType) {
   EXPECT_EQ(m, "t.yaml:4:8: key 'output.vtk': expected true or false, got 'maybe'");
   m = parse_error(std::string(kOneFloe) + "contact: {damping_model: fast}\n");
   EXPECT_TRUE(contains(m, "key 'contact.damping_model': expected one of speed_independent, paper, got 'fast'")) << m;
+  m = parse_error(std::string(kOneFloe) + "contact: {force_model: energy}\n");
+  EXPECT_TRUE(contains(m, "key 'contact.force_model': expected one of centroid, gradient, foundation, got 'energy'"))
+      << m;
+  // The foundation model integrates over the overlap polygon, which the paper's GJK-EPA does not give.
+  m = parse_error(std::string(kOneFloe) + "contact: {force_model: foundation, narrow_phase: gjk_epa}\n");
+  EXPECT_TRUE(contains(m, "key 'contact.narrow_phase': force_model 'foundation'") &&
+              contains(m, "set narrow_phase: exact"))
+      << m;
   m = parse_error(std::string(kOneFloe) + "run: {dt: soon}\n");
   EXPECT_TRUE(contains(m, "key 'run.dt': expected a number [s] or 'auto', got 'soon'")) << m;
   m = parse_error(std::string(kOneFloe) + "floe_field: {corners: [5, 7.5]}\n");
@@ -545,7 +553,7 @@ TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
       "run: {duration: 12.5, dt: 3.3e-5, steps_per_contact: 17, reference_speed: 0.7}\n"
       "output: {interval: 0.1, vtk: false, contacts: false, hdf5: false}\n"
       "ice: {density: 900.5, youngs_modulus: 3.3e8, poisson_ratio: 0.123456789012345}\n"
-      "contact: {restitution: 0.1, friction: 0.7, damping_model: paper, force_model: gradient, broad_phase_cell: 12}\n"
+      "contact: {restitution: 0.1, friction: 0.7, damping_model: paper, force_model: foundation, broad_phase_cell: 12}\n"
       "forcing:\n"
       "  treatment: explicit\n"
       "  quadrature: degree4\n"

@@ -33,6 +33,15 @@ std::shared_ptr<const geometry::ConvexPolygon> rect(double w, double h) {
 
 }  // namespace
 
+TEST(World, TheFoundationForceModelNeedsTheExactNarrowPhase) {
+  dynamics::WorldSettings ws = no_drift();
+  ws.contact.force_model = contact::ForceModel::foundation;
+  ws.narrow_phase = dynamics::PlanarNarrowPhase::gjk_epa;
+  EXPECT_THROW(dynamics::World{ws}, std::invalid_argument);
+  ws.narrow_phase = dynamics::PlanarNarrowPhase::exact;
+  EXPECT_NO_THROW(dynamics::World{ws});
+}
+
 TEST(World, AddBodyRejectsBadBodies) {
   dynamics::World w(no_drift());
   const auto sq = rect(10, 10);

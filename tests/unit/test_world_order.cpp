@@ -189,7 +189,9 @@ TEST(WorldOrder, TheNeighbourListSkinChangesHowOftenTheListsAreBuiltAndNothingEl
   EXPECT_GE(automatic, wide);
 }
 
-TEST(WorldOrder, TheThreadCountChangesNothing) {
+class WorldOrderByModel : public ::testing::TestWithParam<contact::ForceModel> {};
+
+TEST_P(WorldOrderByModel, TheThreadCountChangesNothing) {
 #ifndef _OPENMP
   GTEST_SKIP() << "built without OpenMP: the step is serial";
 #endif
@@ -199,9 +201,11 @@ TEST(WorldOrder, TheThreadCountChangesNothing) {
   tsupport::PackSpec ps;
   ps.speed = 0.3;  // [m/s]
   const tsupport::Pack pack = tsupport::make_pack(300, ps, 9u);
+  dynamics::WorldSettings settings = tsupport::no_drift();
+  settings.contact.force_model = GetParam();
   std::vector<std::unique_ptr<dynamics::World>> worlds;
   for (const int threads : {1, 2, 3, 7}) {
-    worlds.push_back(std::make_unique<dynamics::World>(tsupport::no_drift()));
+    worlds.push_back(std::make_unique<dynamics::World>(settings));
     worlds.back()->set_threads(threads);
     for (const auto& d : pack.bodies) worlds.back()->add_body(d);
   }
@@ -236,6 +240,7 @@ TEST(WorldOrder, TheThreadCountChangesNothing) {
           ASSERT_EQ(ck[c].tangential_force, c1[c].tangential_force) << "threads " << w.threads();
           ASSERT_EQ(ck[c].sliding, c1[c].sliding) << "threads " << w.threads();
           ASSERT_EQ(ck[c].force, c1[c].force) << "threads " << w.threads();
+          ASSERT_EQ(ck[c].energy, c1[c].energy) << "threads " << w.threads();
         }
       }
       for (int i = 0; i < static_cast<int>(w.size()); ++i) {
@@ -247,6 +252,10 @@ TEST(WorldOrder, TheThreadCountChangesNothing) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(ForceModels, WorldOrderByModel,
+                         ::testing::Values(contact::ForceModel::centroid, contact::ForceModel::foundation),
+                         [](const auto& info) { return std::string(contact::force_model_name(info.param)); });
 
 TEST(WorldOrder, AWorldWithoutBodiesStepsOnSeveralThreads) {
   // No slots, so no blocks for the contact sum: nothing is summed, and nothing left from an earlier step is counted.

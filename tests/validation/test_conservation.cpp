@@ -54,11 +54,7 @@ dynamics::WorldSettings free_space(double mu, double e,
 // 2/5 k_n d^2.5 summed over the contacts of the last step (the potential of F_n = k_n d^1.5 along d).
 double elastic_energy(const dynamics::World& w) {
   double u = 0.0;
-  for (const dynamics::ContactRecord& c : w.contacts()) {
-    const auto k = w.contact_law().coefficients(w.shape(c.a).equivalent_radius(), w.shape(c.b).equivalent_radius(),
-                                                w.mass(c.a), w.mass(c.b));
-    u += 0.4 * k.k_n * std::pow(c.geometry.depth, 2.5);
-  }
+  for (const dynamics::ContactRecord& c : w.contacts()) u += c.energy;
   return u;
 }
 
@@ -89,7 +85,7 @@ struct CollisionStats {
 
 class ConservationByModel : public ::testing::TestWithParam<contact::ForceModel> {};
 
-std::string model_name(contact::ForceModel m) { return m == contact::ForceModel::gradient ? "gradient" : "centroid"; }
+std::string model_name(contact::ForceModel m) { return contact::force_model_name(m); }
 
 TEST_P(ConservationByModel, MomentumWithFrictionAndDamping) {
   const Field f = make_field(20240613, 200, 9.5, 1.0, 0.1);
@@ -280,5 +276,6 @@ TEST(Conservation, LopsidedCornerOnFaceImpact) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ForceModels, ConservationByModel,
-                         ::testing::Values(contact::ForceModel::centroid, contact::ForceModel::gradient),
+                         ::testing::Values(contact::ForceModel::centroid, contact::ForceModel::gradient,
+                                           contact::ForceModel::foundation),
                          [](const auto& info) { return model_name(info.param); });
