@@ -468,10 +468,11 @@ void World::contact_forces(double dt) {
       r.q2 = x * x * x * x * x;
     } else {
       r.cf = law_.evaluate(k, g.depth, rate, v_rel.dot(t), spring, dt);
-      // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop).
+      // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop),
+      // v^2 = rate^2 + 2 W / m* the impact speed of this energy W = 2/5 k_n d^2.5.
       const double km = k.k_per_m;
       r.energy = 0.4 * k.k_n * g.depth * g.depth * std::sqrt(g.depth);
-      r.v2 = rate * rate + 0.8 * km * g.depth * g.depth * std::sqrt(g.depth);
+      r.v2 = rate * rate + 2.0 * r.energy / k.m_star;
       r.q2 = r.v2 * (km * km) * (km * km);
     }
 
