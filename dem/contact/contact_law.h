@@ -94,6 +94,23 @@ struct ContactForce {
   bool sliding = false;
 };
 
+// How the damping of ContactLaw::evaluate_stiffness meets the time step.
+struct DampingStep {
+  // The pair's inverse effective mass along its direction, its arms included [1/kg] (0: `rate` is used as given).
+  // `rate` is then the approach rate predicted at the end of the step with the pair's normal force of the last
+  // step, last_normal [N]; over the final half kick the pair's new force F_n changes it by
+  // -dt/2 inverse_mass (F_n - last_normal). The damping is evaluated at that end-of-step rate, solved together
+  // with F_n = elastic + damping rate (linear: one division). NaN last_normal: unknown, `rate` as given.
+  double inverse_mass = 0.0;
+  double last_normal = 0.0;
+  // On the contact's first step, the time since it began [s], in [0, dt]; negative on later steps. The step's
+  // force stands for the impulse from dt/2 before now to dt/2 after; the damping force, which jumps at entry
+  // where the law is linear, acted only from the entry: it is scaled by (dt/2 + tau)/dt, and by
+  // 1 - inverse_mass c (dt/2 - tau)/2 for the approach rate's fall under the damping over that time (the mean
+  // rate over it against the rate now).
+  double since_entry = -1.0;
+};
+
 class ContactLaw {
  public:
   explicit ContactLaw(const ContactLawSettings& s);
@@ -120,17 +137,28 @@ class ContactLaw {
   // c d^p d_dot with d^p written through K, and the tangential stiffness k_s d^0.5 = K / (1.5 (2 + 2 nu)).
   // `exponent`: n of the power law W ∝ approach^n the contact follows locally (2.5 for Hertz). The speed-independent
   // damping is power_law_damping(e, n) / sqrt(n - 1) sqrt(m* K) (for n = 2.5 exactly evaluate()'s); the paper's
-  // c d^0.5 d_dot keeps its form with d^0.5 = K / (1.5 k_n). `damping_scale` multiplies the damping force (the
-  // first step of a contact: see contact_stage.cpp).
+  // c d^0.5 d_dot keeps its form with d^0.5 = K / (1.5 k_n). `step`: how the damping meets the time step
+  // (DampingStep; value-initialised: `rate` is the rate to damp).
   ContactForce evaluate_stiffness(const PairCoefficients& c, double elastic, double stiffness, double exponent,
                                   double rate, double slip_velocity, double spring, double dt,
-                                  double damping_scale = 1.0) const {
+                                  const DampingStep& step) const {
     ContactForce f;
     const double root = stiffness / (1.5 * c.k_n);  // d^0.5 of the Hertz contact of this stiffness
-    const double damping = s_.damping == DampingModel::paper
-                               ? c.damping * root
-                               : power_damping(exponent) * std::sqrt(c.m_star * stiffness);
-    f.normal = std::max(0.0, elastic + damping_scale * damping * rate);
+    double damping = s_.damping == DampingModel::paper ? c.damping * root
+                                                       : power_damping(exponent) * std::sqrt(c.m_star * stiffness);
+    const double w = step.inverse_mass;
+    if (step.since_entry >= 0.0) {
+      const double h = 0.5 * dt, tau = std::min(step.since_entry, dt);
+      damping *= (h + tau) / dt * std::max(0.0, 1.0 - 0.5 * w * damping * (h - tau));
+    }
+    if (w > 0.0 && std::isfinite(step.last_normal)) {
+      const double response = 0.5 * dt * w;
+      const double at_end = (rate - response * (elastic - step.last_normal)) / (1.0 + response * damping);
+      // Where that force would pull, the contact ends the step without force: its rate is then the prediction's
+      // less the last force's share.
+      rate = elastic + damping * at_end >= 0.0 ? at_end : rate + response * step.last_normal;
+    }
+    f.normal = std::max(0.0, elastic + damping * rate);
     friction(c.mu, c.k_s * root, slip_velocity, spring, dt, f);
     return f;
   }

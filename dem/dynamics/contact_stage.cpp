@@ -225,7 +225,7 @@ void World::sum_contacts(int n) {
     blk.first_store = hits;
     hits += blk.hits;
   }
-  const std::span<std::pair<contact::PairKey, double>> stores = cache_.store_slots(hits);
+  const std::span<contact::ContactCache::Entry> stores = cache_.store_slots(hits);
   const std::uint64_t next_gen = cache_.generation() + 1;  // the generation end_step() makes them the previous
   slot_force_.resize(static_cast<std::size_t>(n));
   slot_torque_.resize(static_cast<std::size_t>(n));
@@ -272,7 +272,7 @@ void World::sum_contacts(int n) {
         skin_store_[static_cast<std::size_t>(e)] = static_cast<std::uint32_t>(store);
         skin_store_gen_[static_cast<std::size_t>(e)] = next_gen;
       }
-      stores[store++] = {contact::PairKey{A.id, B.id}, r.cf.spring};
+      stores[store++] = {contact::PairKey{A.id, B.id}, {r.cf.spring, r.cf.normal}};
       add(r, pairs_[p].a);
       if (pairs_[p].b < hi) add(r, pairs_[p].b);
       // The overlap deepest against half the smaller floe's equivalent radius (the run guard's limit).
@@ -441,23 +441,27 @@ void World::contact_forces(double dt) {
     }
 
     const contact::PairKey key{A.id, B.id};
-    // The spring the previous step stored for this pair, and whether it did (the pair touched then).
+    // What the previous step stored for this pair, and whether it did (the pair touched then).
     bool continuing = false;
-    const double spring =
+    const contact::PlanarHistory last =
         by_entry  // (every pair of candidate_pairs() has its list entry)
             ? ((continuing = skin_store_gen_[static_cast<std::size_t>(entry)] == history_gen_)
                    ? cache_.stored(skin_store_[static_cast<std::size_t>(entry)])
-                   : 0.0)
+                   : contact::PlanarHistory{})
             : cache_.previous(key, cache_hint_[polyfloe_thread_index()].at, &continuing);
+    const double spring = last.spring;
     if (foundation) {
-      // A contact's first step: it began tau = extent / rate before now (at most a step), but this step's force
-      // stands for the half step either side of now. The elastic force starts from zero and the error that leaves
-      // is of second order; the damping force jumps to its value where the force is linear (n = 2), so it is
-      // scaled to the time it really acted: (dt/2 + tau) / dt.
-      const double damping_scale =
-          continuing ? 1.0 : 0.5 + (rate > 0.0 ? std::min(g.extent, rate * dt) / (rate * dt) : 1.0);
-      r.cf = law_.evaluate_stiffness(k, elastic, stiffness, exponent, rate, v_rel.dot(t), spring, dt,
-                                     damping_scale);
+      // The damping at the end of the step (see contact::DampingStep): the velocities were predicted there with
+      // the last step's forces (World::evaluate_forces), and this pair's own change of normal force since moves
+      // its approach rate by the final half kick, through w = the inverse of its effective mass along its
+      // direction (with the arms). A contact's first step: it began tau = extent / rate before now (at most dt).
+      const double arm_a = g.load_moment / load + geometry::cross(ra, dir_b);
+      contact::DampingStep step;
+      step.inverse_mass = inv_mass_[A.body] + inv_mass_[B.body] + inv_inertia_[A.body] * arm_a * arm_a +
+                          inv_inertia_[B.body] * arm_b * arm_b;
+      step.last_normal = last.normal_force;
+      if (!continuing) step.since_entry = rate > 0.0 ? std::min(g.extent / rate, dt) : dt;
+      r.cf = law_.evaluate_stiffness(k, elastic, stiffness, exponent, rate, v_rel.dot(t), spring, dt, step);
       // The contact's duration from its stiffness now: t = g pi sqrt(m* / K), g = 1 for a linear spring (exact),
       // 1.283 for Hertz (its t_c at its deepest), between them linear in n. As q2 below:
       // (3.2181 / t)^10 = (x K / m*)^5, x = (3.2181 / (g pi))^2.

@@ -164,7 +164,7 @@ void SpatialWorld::compute_forces(double dt) {
   }
   broad_.find_pairs(boxes_, is_dynamic_, pairs_);
   contacts_.clear();
-  spring_next_.clear();
+  std::size_t hint = 0;  // pairs come in nearly last step's order (contact::HistoryStore::previous)
   for (const auto& p : pairs_) {
     int a = p.a, b = p.b;
     if (z_lo_[a] > z_hi_[b] || z_lo_[b] > z_hi_[a]) continue;
@@ -277,9 +277,10 @@ void SpatialWorld::compute_forces(double dt) {
     const Vec3 vrel = relative_velocity(k.point);
     const contact::PairKey key = contact::make_key(id_[a], id_[b]);
     Vec3 s = Vec3::Zero();
-    if (auto it = spring_.find(key); it != spring_.end()) {
-      const double len = it->second.norm();
-      s = it->second - k.normal * k.normal.dot(it->second);
+    bool found = false;
+    if (const Vec3 last = springs_.previous(key, hint, &found); found) {
+      const double len = last.norm();
+      s = last - k.normal * k.normal.dot(last);
       const double l2 = s.norm();
       s = l2 > 0.0 ? Vec3(s * (len / l2)) : Vec3::Zero();
     }
@@ -292,7 +293,7 @@ void SpatialWorld::compute_forces(double dt) {
       ft *= limit / ft.norm();
       s = k_t > 0.0 ? Vec3(-ft / k_t) : Vec3::Zero();
     }
-    if (coef.mu > 0.0) spring_next_.emplace(key, s);
+    if (coef.mu > 0.0) springs_.store(key, s);
     {
       const double kk = coef.k_n * m.count, mm = 1.0 / inv_m;
       const double rate = -k.normal.dot(vrel);
@@ -312,7 +313,7 @@ void SpatialWorld::compute_forces(double dt) {
     torque_[a] += torque_a - ra.cross(ft);
     contacts_.push_back(k);
   }
-  spring_.swap(spring_next_);
+  springs_.end_step();
   forces_ready_ = true;
 }
 

@@ -176,7 +176,7 @@ class SpatialWorld {
   // contacts
   std::vector<contact::CandidatePair> pairs_;
   std::vector<SpatialContact> contacts_;
-  std::unordered_map<contact::PairKey, Vec3, contact::PairKeyHash> spring_, spring_next_;  // tangential springs [m]
+  contact::HistoryStore<Vec3> springs_;  // the tangential spring of each touching pair with friction [m]
   NarrowPhaseStats stats_;
 };
 

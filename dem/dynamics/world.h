@@ -95,7 +95,7 @@ struct WorldState {
   std::vector<forcing::DriftLoad> drift_load;
   std::vector<Vec2> lin_force;
   std::vector<double> lin_torque;
-  std::vector<std::pair<contact::PairKey, double>> contact_history;  // tangential springs [m]
+  std::vector<contact::ContactCache::Entry> contact_history;  // per touching pair (contact/contact_cache.h)
   std::optional<bonds::BondState> bonds;
   int bonds_failed_last = 0;
 };

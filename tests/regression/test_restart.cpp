@@ -228,7 +228,7 @@ void expect_same_run(const fs::path& a, const fs::path& b) {
   ASSERT_EQ(wa.contact_history.size(), wb.contact_history.size());
   for (std::size_t k = 0; k < wa.contact_history.size(); ++k) {
     EXPECT_TRUE(wa.contact_history[k].first == wb.contact_history[k].first);
-    EXPECT_EQ(std::memcmp(&wa.contact_history[k].second, &wb.contact_history[k].second, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&wa.contact_history[k].second, &wb.contact_history[k].second, sizeof(polyfloe::contact::PlanarHistory)), 0);
   }
   ASSERT_EQ(wa.bonds.has_value(), wb.bonds.has_value());
   if (wa.bonds) {

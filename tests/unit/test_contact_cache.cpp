@@ -8,7 +8,8 @@
 
 #include "contact/contact_cache.h"
 
-using polyfloe::contact::ContactCache;
+// The store is generic in what it keeps per pair; one double here.
+using ContactCache = polyfloe::contact::HistoryStore<double>;
 using polyfloe::contact::make_key;
 
 TEST(ContactCache, ValuesLiveOneStepUnlessRefreshed) {

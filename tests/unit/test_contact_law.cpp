@@ -233,3 +233,43 @@ TEST(ContactLaw, RestitutionOfTheLawItself) {
     }
   }
 }
+
+// evaluate_stiffness with a DampingStep: a Hertz contact's stiffness gives evaluate()'s force; the end-of-step rate
+// is solved exactly (F_n = elastic + c r_end, r_end = r - dt/2 w (F_n - F_last), to round-off), falls back to
+// the rate as given where the last force is unknown (NaN) or no inverse mass is given, and ends the step without
+// force where the solve would pull; a first step scales the damping by (dt/2 + tau)/dt (1 - w c (dt/2 - tau)/2).
+TEST(ContactLaw, DampingAtTheEndOfTheStep) {
+  ContactLawSettings s = settings(0.3, 0.0);
+  s.force_model = contact::ForceModel::foundation;  // (the law's power-law damping table is built for it)
+  const ContactLaw law(s);
+  const auto c = law.coefficients(4.0, 4.0, 2.0e4, 2.0e4);
+  const double d = 1e-3, dt = 1e-4, rate = 0.2;
+  const double elastic = c.k_n * std::pow(d, 1.5), stiffness = 1.5 * c.k_n * std::sqrt(d);
+  const auto hertz = law.evaluate(c, d, rate, 0.0, 0.0, dt);
+  const auto plain = law.evaluate_stiffness(c, elastic, stiffness, 2.5, rate, 0.0, 0.0, dt, {});
+  EXPECT_NEAR(plain.normal, hertz.normal, 1e-12 * hertz.normal);
+  const double damping = (plain.normal - elastic) / rate;  // the law's c for this stiffness [N s/m]
+  const double w = 2.0 / 2.0e4;                            // two free masses, no arms [1/kg]
+  for (const double last : {0.0, 0.5 * elastic, 2.0 * elastic}) {
+    const auto f = law.evaluate_stiffness(c, elastic, stiffness, 2.5, rate, 0.0, 0.0, dt,
+                                          {.inverse_mass = w, .last_normal = last});
+    const double r_end = rate - 0.5 * dt * w * (f.normal - last);
+    EXPECT_NEAR(f.normal, elastic + damping * r_end, 1e-12 * f.normal) << "last " << last;
+  }
+  for (const contact::DampingStep step :
+       {contact::DampingStep{.inverse_mass = w, .last_normal = std::numeric_limits<double>::quiet_NaN()},
+        contact::DampingStep{.inverse_mass = 0.0, .last_normal = 3.0 * elastic}})
+    EXPECT_EQ(law.evaluate_stiffness(c, elastic, stiffness, 2.5, rate, 0.0, 0.0, dt, step).normal, plain.normal);
+  // Separating fast after a large force: no pull, and no force at the end of the step.
+  EXPECT_EQ(law.evaluate_stiffness(c, elastic, stiffness, 2.5, -50.0, 0.0, 0.0, dt,
+                                   {.inverse_mass = w, .last_normal = 10.0 * elastic})
+                .normal,
+            0.0);
+  // First step.
+  for (const double tau : {0.0, 0.25 * dt, dt}) {
+    const auto f = law.evaluate_stiffness(c, elastic, stiffness, 2.5, rate, 0.0, 0.0, dt,
+                                          {.inverse_mass = w, .last_normal = std::nan(""), .since_entry = tau});
+    const double scale = (0.5 * dt + tau) / dt * (1.0 - 0.5 * w * damping * (0.5 * dt - tau));
+    EXPECT_NEAR(f.normal, elastic + scale * damping * rate, 1e-12 * f.normal) << "tau " << tau;
+  }
+}
