@@ -1,4 +1,5 @@
-// Stage: velocity-Verlet kicks and drift, and the world-frame shapes that follow the bodies.
+// Stage: velocity-Verlet kicks and moves, and the world-frame shapes that follow the bodies. (Velocity Verlet's
+// "drift", the position update, is called the move here: drift is what wind and currents do to the ice.)
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,12 +10,12 @@
 
 namespace polyfloe::dynamics {
 
-// The first half kick and the drift, in one pass over the bodies. Where drag and Coriolis are treated
+// The first half kick and the move, in one pass over the bodies. Where drag and Coriolis are treated
 // semi-implicitly (bodies whose drift load has a damping matrix), drag enters only the final kick (kick_implicit),
 // over the whole step; the first half kick applies the other forces and Coriolis at the start-of-step velocity.
 // The same pass writes each body's slot key at its new position (sort_slots' first part).
-bool World::kick_and_drift(double dt) {
-  const double h = 0.5 * dt;
+bool World::kick_and_move(double dt) {
+  const double half_dt = 0.5 * dt;
   const int n = static_cast<int>(size());
   bool changed = false;
   // And how far each body's vertices may have moved since the neighbour lists were built (skin_outrun's test,
@@ -33,8 +34,8 @@ bool World::kick_and_drift(double dt) {
       f -= d.force + d.mf * geometry::perp_left(vel_[i]);
       t -= d.torque;
     }
-    vel_[i] += (h * inv_mass_[i]) * f;
-    omega_[i] += h * inv_inertia_[i] * t;
+    vel_[i] += (half_dt * inv_mass_[i]) * f;
+    omega_[i] += half_dt * inv_inertia_[i] * t;
     if (motion_[i] != Motion::fixed) {
       pos_[i] += dt * vel_[i];
       yaw_[i] += dt * omega_[i];
@@ -49,9 +50,9 @@ bool World::kick_and_drift(double dt) {
 // A = M + dt D_drag + h C (C the Coriolis part m f [[0, -1], [1, 0]]) is positive definite (M > 0, D_drag >= 0,
 // C antisymmetric), so the cofactor inverse of the 3 x 3 is safe.
 World::DampedInverse World::damped_inverse(const forcing::DriftLoad& d, double dt, double mass, double inertia) {
-  const double h = 0.5 * dt;
-  const double a00 = mass + dt * d.dxx, a01 = dt * d.dxy - h * d.mf, a02 = dt * d.dxw;
-  const double a10 = dt * d.dxy + h * d.mf, a11 = mass + dt * d.dyy, a12 = dt * d.dyw;
+  const double half_dt = 0.5 * dt;
+  const double a00 = mass + dt * d.dxx, a01 = dt * d.dxy - half_dt * d.mf, a02 = dt * d.dxw;
+  const double a10 = dt * d.dxy + half_dt * d.mf, a11 = mass + dt * d.dyy, a12 = dt * d.dyw;
   const double a20 = dt * d.dxw, a21 = dt * d.dyw, a22 = inertia + dt * d.dww;
   const double c00 = a11 * a22 - a12 * a21, c01 = a12 * a20 - a10 * a22, c02 = a10 * a21 - a11 * a20;
   // x = A^-1 f via the adjugate (transposed cofactors).
@@ -61,14 +62,14 @@ World::DampedInverse World::damped_inverse(const forcing::DriftLoad& d, double d
           1.0 / (a00 * c00 + a01 * c01 + a02 * c02)};
 }
 
-World::Vec3 World::apply(const DampedInverse& a, const Vec2& f1, double f2) {
+World::BodyVelocity World::apply(const DampedInverse& a, const Vec2& f1, double f2) {
   const double* m = a.adj;
   return {{(m[0] * f1.x() + m[1] * f1.y() + m[2] * f2) * a.inv_det,
            (m[3] * f1.x() + m[4] * f1.y() + m[5] * f2) * a.inv_det},
           (m[6] * f1.x() + m[7] * f1.y() + m[8] * f2) * a.inv_det};
 }
 
-World::Vec3 World::implicit_velocity(std::size_t i, double dt, const DampedInverse& a) const {
+World::BodyVelocity World::implicit_velocity(std::size_t i, double dt, const DampedInverse& a) const {
   // Drag linear in v with each sample's speed factor frozen at the prediction v*: F_d(v) = b - D v; Coriolis
   // F_c(v) = -C v. With F_o the other forces at the end of the step and v the half-kicked velocity
   // (v = v_n + h (F_o,n - C v_n) / m):
@@ -77,11 +78,11 @@ World::Vec3 World::implicit_velocity(std::size_t i, double dt, const DampedInver
   // step is the true balance F_o + b - D v - C v = 0) and the trapezoidal rule for Coriolis (a Cayley rotation:
   // the speed of an inertial oscillation is kept exactly).
   const forcing::DriftLoad& d = drift_load_[i];
-  const double h = 0.5 * dt;
+  const double half_dt = 0.5 * dt;
   const Vec2 f_other = force_[i] - d.force;
   const double t_other = torque_[i] - d.torque;
-  return apply(a, mass_[i] * vel_[i] + h * f_other + dt * lin_force_[i],
-               inertia_[i] * omega_[i] + h * t_other + dt * lin_torque_[i]);
+  return apply(a, mass_[i] * vel_[i] + half_dt * f_other + dt * lin_force_[i],
+               inertia_[i] * omega_[i] + half_dt * t_other + dt * lin_torque_[i]);
 }
 
 void World::set_linear_drift_load(std::size_t i, const Vec2& u, double w) {
@@ -92,7 +93,7 @@ void World::set_linear_drift_load(std::size_t i, const Vec2& u, double w) {
 }
 
 void World::kick_implicit(double dt) {
-  const double h = 0.5 * dt;
+  const double half_dt = 0.5 * dt;
   const int n = static_cast<int>(size());
   // By blocks of bodies, each adding its bodies' motion to its share of the run guard's summary as it goes.
   const int blocks = (n + kSummaryBlock - 1) / kSummaryBlock;
@@ -104,10 +105,10 @@ void World::kick_implicit(double dt) {
       const std::size_t i = static_cast<std::size_t>(ii);
       forcing::DriftLoad& d = drift_load_[i];  // with lin_force_, set by compute_forces()
       if (!is_dynamic_[i] || !d.has_damping()) {
-        vel_[i] += (h * inv_mass_[i]) * force_[i];
-        omega_[i] += h * inv_inertia_[i] * torque_[i];
+        vel_[i] += (half_dt * inv_mass_[i]) * force_[i];
+        omega_[i] += half_dt * inv_inertia_[i] * torque_[i];
       } else {
-        const Vec3 v = implicit_velocity(i, dt, inverse_of(i, dt));
+        const BodyVelocity v = implicit_velocity(i, dt, inverse_of(i, dt));
         vel_[i] = v.u;
         omega_[i] = v.w;
         // The drift load at the new velocity (the linear model's), so force_ stays the total force.

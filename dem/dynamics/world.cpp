@@ -137,7 +137,7 @@ void World::step(double dt) {
   using clock = std::chrono::steady_clock;
   if (!forces_ready_) compute_forces(0.0);
   auto t0 = clock::now();
-  const bool keys_changed = kick_and_drift(dt);
+  const bool keys_changed = kick_and_move(dt);
   auto t1 = clock::now();
   sort_slots(keys_changed);
   profile_.integrate += std::chrono::duration<double>(t1 - t0).count();
@@ -165,7 +165,7 @@ void World::evaluate_forces(double dt, bool shapes) {
   // time, and the drag coefficients frozen at it would then be meaningless.
   vel_eval_.resize(n);
   omega_eval_.resize(n);
-  const double h = 0.5 * dt;
+  const double half_dt = 0.5 * dt;
   const int n_int = static_cast<int>(n);
   const auto t0 = clock::now();
   // Between full evaluations of the drift loads (DriftSettings::update_every), each body's load comes from the
@@ -176,20 +176,20 @@ void World::evaluate_forces(double dt, bool shapes) {
   const bool linear = drift_from_linear_model(dt);
   slot_state_.resize(n);
   // The damped inverses for this dt, where none are kept (the drag matrices of the last full evaluation).
-  const bool refill = h > 0.0 && inverse_dt_ != dt;
+  const bool refill = half_dt > 0.0 && inverse_dt_ != dt;
   inverse_.resize(n);
   POLYFLOE_OMP_FOR(threads_)
   for (int ii = 0; ii < n_int; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (shapes && motion_[i] != Motion::fixed) update_shape(ii);
-    if (h > 0.0 && i < lin_force_.size() && drift_load_[i].has_damping()) {
+    if (half_dt > 0.0 && i < lin_force_.size() && drift_load_[i].has_damping()) {
       if (refill) inverse_[i] = damped_inverse(drift_load_[i], dt, mass_[i], inertia_[i]);
-      const Vec3 v = implicit_velocity(i, dt, inverse_[i]);
+      const BodyVelocity v = implicit_velocity(i, dt, inverse_[i]);
       vel_eval_[i] = v.u;
       omega_eval_[i] = v.w;
     } else {
-      vel_eval_[i] = vel_[i] + (h * inv_mass_[i]) * force_[i];
-      omega_eval_[i] = omega_[i] + h * inv_inertia_[i] * torque_[i];
+      vel_eval_[i] = vel_[i] + (half_dt * inv_mass_[i]) * force_[i];
+      omega_eval_[i] = omega_[i] + half_dt * inv_inertia_[i] * torque_[i];
     }
     force_[i] = ext_force_[i];
     torque_[i] = ext_torque_[i];
@@ -228,9 +228,9 @@ void World::evaluate_forces(double dt, bool shapes) {
     const Eigen::Vector3d dv = d.damping_times(vs, ws);
     lin_force_[i] = d.force + dv.head<2>();
     lin_torque_[i] = d.torque + dv.z();
-    if (h > 0.0) inverse_[i] = damped_inverse(d, dt, mass_[i], inertia_[i]);
+    if (half_dt > 0.0) inverse_[i] = damped_inverse(d, dt, mass_[i], inertia_[i]);
   }
-  inverse_dt_ = h > 0.0 ? dt : 0.0;
+  inverse_dt_ = half_dt > 0.0 ? dt : 0.0;
   forces_ready_ = true;
 }
 

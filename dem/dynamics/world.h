@@ -108,7 +108,7 @@ class World {
   int add_body(const BodyDesc& desc);
   std::size_t size() const { return id_.size(); }
 
-  // Advance by dt [s]: velocity-Verlet (kick-drift-kick), forces evaluated at the new positions with the
+  // Advance by dt [s]: velocity-Verlet (kick, move, kick), forces evaluated at the new positions with the
   // half-step velocities.
   void step(double dt);
 
@@ -230,13 +230,13 @@ class World {
   // compute_forces; with `shapes` (step()) its first pass also moves the world-frame shapes (the slots sorted).
   void evaluate_forces(double dt, bool shapes);
   // The first half kick, then the positions over the whole step and the slot keys there; whether a key changed.
-  bool kick_and_drift(double dt);
+  bool kick_and_move(double dt);
   void add_motion(std::size_t i, MotionSummary& s) const;  // body i's share of the motion summary
   static constexpr int kSummaryBlock = 64;                 // bodies per block of the motion summary's sums
   void kick_implicit(double dt);
-  struct Vec3 {
-    Vec2 u;
-    double w;
+  struct BodyVelocity {
+    Vec2 u;    // [m/s]
+    double w;  // [rad/s]
   };
   // The inverse of A = M + dt D_drag + dt/2 C for a body (D_drag and C, Coriolis, the parts of the damping matrix
   // of `d`), as its adjugate (row-major) and 1/det(A); applied to (p, p_w) it solves A v = (p, p_w) for the body
@@ -246,10 +246,10 @@ class World {
     double inv_det;
   };
   static DampedInverse damped_inverse(const forcing::DriftLoad& d, double dt, double mass, double inertia);
-  static Vec3 apply(const DampedInverse& a, const Vec2& p, double p_w);
+  static BodyVelocity apply(const DampedInverse& a, const Vec2& p, double p_w);
   // Body i's velocity after the final kick of a step of dt, from its half-kicked velocity (see integrate.cpp);
   // `a` its damped_inverse for dt.
-  Vec3 implicit_velocity(std::size_t i, double dt, const DampedInverse& a) const;
+  BodyVelocity implicit_velocity(std::size_t i, double dt, const DampedInverse& a) const;
   // damped_inverse of body i for dt: the kept one where it holds (inverse_dt_ == dt), else computed.
   DampedInverse inverse_of(std::size_t i, double dt) const {
     return dt == inverse_dt_ ? inverse_[i] : damped_inverse(drift_load_[i], dt, mass_[i], inertia_[i]);
@@ -257,7 +257,7 @@ class World {
   void update_shapes();
   void update_shape(int i);
   // Re-sorts the contact stage's slots (below) by the bodies' current positions and lays out the moved ones anew.
-  // The slots in order of their keys (set by kick_and_drift() or set_slot_keys(); `keys_changed`: whether any
+  // The slots in order of their keys (set by kick_and_move() or set_slot_keys(); `keys_changed`: whether any
   // changed since the last sort).
   void sort_slots(bool keys_changed);
   bool set_slot_key(int i);  // body i's slot key at its position; whether it changed
@@ -319,7 +319,7 @@ class World {
   std::vector<double> lin_torque_;
   std::vector<Motion> motion_;
   std::vector<std::uint8_t> is_dynamic_;
-  // world-frame shapes, refreshed after each drift
+  // world-frame shapes, refreshed after each move
   std::vector<int> vert_off_{0};  // prefix sums of the vertex counts, in body order (vertex count = difference)
   std::vector<int> vert_begin_;   // where body i's world-frame vertices start in world_xy_ (slot order, below)
   std::vector<Vec2> world_xy_;
@@ -396,7 +396,7 @@ class World {
     skin_moved_[i] = moved;
     return moved <= half;  // NaN counts as too far
   }
-  // skin_outrun's verdict from kick_and_drift()'s pass at the current positions, for the next contact stage to take
+  // skin_outrun's verdict from kick_and_move()'s pass at the current positions, for the next contact stage to take
   // once; none where positions changed from outside since (restore, add_body).
   std::optional<bool> kick_outrun_;
   std::vector<geometry::Aabb> skin_boxes_;
