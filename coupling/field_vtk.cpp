@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 
 namespace polyfloe::coupling {
 

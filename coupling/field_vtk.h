@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "io/field_file.h"
+#include "formats/field_file.h"
 
 namespace polyfloe::coupling {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/field_file.h"
+#include "formats/field_file.h"
 #include "openfoam_case.h"
 
 namespace polyfloe::coupling {

@@ -14,7 +14,7 @@
 
 #include "field_vtk.h"
 #include "forcing/gridded_field.h"
-#include "io/field_file.h"
+#include "formats/field_file.h"
 #include "openfoam_case.h"
 #include "probed_field.h"
 #include "resample.h"

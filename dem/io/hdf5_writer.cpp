@@ -7,10 +7,10 @@
 #include <system_error>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 
 #include "dynamics/world.h"
-#include "io/hdf5_file.h"
+#include "formats/hdf5_file.h"
 
 namespace polyfloe::io {
 

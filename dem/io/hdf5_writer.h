@@ -30,7 +30,7 @@
 #include <vector>
 #include <string>
 
-#include "io/hdf5_file.h"
+#include "formats/hdf5_file.h"
 
 namespace polyfloe::dynamics {
 class World;

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "dynamics/spatial_world.h"
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 #include "io/vtk_common.h"
 #include "io/vtk_writer.h"
 

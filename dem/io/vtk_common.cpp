@@ -16,8 +16,8 @@
 #include <system_error>
 #include <vector>
 
-#include "io/atomic_file.h"
-#include "io/output_manifest.h"
+#include "formats/atomic_file.h"
+#include "formats/output_manifest.h"
 #include "io/vtk_writer.h"
 
 namespace polyfloe::io {

@@ -2,7 +2,7 @@
 // (VtkImageSeriesWriter); their shared pieces and the .pvd collection are in vtk_common.cpp.
 #include "io/vtk_writer.h"
 
-#include "io/output_manifest.h"
+#include "formats/output_manifest.h"
 
 #include <vtkCellArray.h>
 #include <vtkLine.h>
@@ -26,7 +26,7 @@
 #include <system_error>
 
 #include "dynamics/world.h"
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 #include "io/vtk_common.h"
 
 namespace polyfloe::io {

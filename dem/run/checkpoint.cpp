@@ -8,8 +8,8 @@
 #include <system_error>
 #include <type_traits>
 
-#include "io/atomic_file.h"
-#include "io/hdf5_file.h"
+#include "formats/atomic_file.h"
+#include "formats/hdf5_file.h"
 #include "scene/scene.h"
 
 namespace polyfloe::run {

@@ -13,7 +13,7 @@
 #include <fstream>
 #include <set>
 
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 #include "run/simulation.h"
 
 namespace polyfloe::run {

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "io/output_manifest.h"
+#include "formats/output_manifest.h"
 
 namespace polyfloe::run {
 

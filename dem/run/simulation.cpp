@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "contact/contact_law.h"
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 #include "io/hdf5_writer.h"
 #include "io/progress.h"
 #include "io/vtk_writer.h"

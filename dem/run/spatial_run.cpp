@@ -9,7 +9,7 @@
 #include <optional>
 #include <sstream>
 
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 #include "io/spatial_hdf5_writer.h"
 #include "io/vtk_writer.h"
 #include "run/output_folder.h"

@@ -4,7 +4,7 @@
 
 #include "forcing/analytic_fields.h"
 #include "forcing/gridded_field.h"
-#include "io/field_file.h"
+#include "formats/field_file.h"
 
 namespace polyfloe::scene::detail {
 

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "dynamics/world.h"
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 #include "run/checkpoint.h"
 #include "scene/scene.h"
 #include "scene/scene_reader.h"

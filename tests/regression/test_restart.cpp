@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "io/hdf5_file.h"
+#include "formats/hdf5_file.h"
 #include "pvd.h"
 #include "run/checkpoint.h"
 

@@ -9,8 +9,8 @@
 
 #include "scratch_dir.h"
 #include "forcing/gridded_field.h"
-#include "io/field_file.h"
-#include "io/hdf5_file.h"
+#include "formats/field_file.h"
+#include "formats/hdf5_file.h"
 #include "scene/scene.h"
 #include "scene/scene_reader.h"
 #include "scene_compare.h"

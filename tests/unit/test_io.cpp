@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "dynamics/world.h"
-#include "io/atomic_file.h"
-#include "io/hdf5_file.h"
+#include "formats/atomic_file.h"
+#include "formats/hdf5_file.h"
 #include "io/hdf5_writer.h"
 #include "io/vtk_writer.h"
 

@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-#include "io/output_manifest.h"
+#include "formats/output_manifest.h"
 #include "run/output_folder.h"
 #include "scratch_dir.h"
 

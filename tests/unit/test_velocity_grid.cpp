@@ -16,7 +16,7 @@
 
 #include "scratch_dir.h"
 #include "dynamics/world.h"
-#include "io/hdf5_file.h"
+#include "formats/hdf5_file.h"
 #include "io/hdf5_writer.h"
 #include "run/velocity_grid.h"
 #include "test_support.h"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "dynamics/world.h"
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 #include "io/vtk_writer.h"
 #include "pvd.h"
 #include "scratch_dir.h"

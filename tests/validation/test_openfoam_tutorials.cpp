@@ -21,7 +21,7 @@
 
 #include "text_file.h"
 #include "forcing/gridded_field.h"
-#include "io/field_file.h"
+#include "formats/field_file.h"
 
 namespace polyfloe {
 namespace {

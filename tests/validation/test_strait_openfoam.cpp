@@ -17,8 +17,8 @@
 
 #include "text_file.h"
 #include "forcing/gridded_field.h"
-#include "io/field_file.h"
-#include "io/hdf5_file.h"
+#include "formats/field_file.h"
+#include "formats/hdf5_file.h"
 #include "openfoam_case.h"
 #include "probed_field.h"
 #include "resample.h"

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Writes the field files of the bad-input corpus (cases 87-94 and the field_file_* cases): one valid two-snapshot field and one file
-spoiled per way a field file can be wrong. Rerun after changing the field-file layout (dem/io/field_file.h):
+spoiled per way a field file can be wrong. Rerun after changing the field-file layout (dem/formats/field_file.h):
     /usr/bin/python3 tests/bad_input/fields/make_fields.py
 """
 import pathlib

@@ -1,9 +1,9 @@
 // The HDF5 wrapper of hdf5_file.h: handles, objects and attributes, groups and files (datasets: hdf5_dataset.cpp).
-#include "io/hdf5_file.h"
+#include "formats/hdf5_file.h"
 
 #include <hdf5.h>
 
-#include "io/hdf5_detail.h"
+#include "formats/hdf5_detail.h"
 
 #include <algorithm>
 #include <type_traits>

@@ -1,6 +1,6 @@
 // The HDF5 wrapper's datasets (hdf5_file.h): extents and types, writing, appending rows (the time series),
 // reading rows, and copying rows from another file's dataset.
-#include "io/hdf5_file.h"
+#include "formats/hdf5_file.h"
 
 #include <hdf5.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "io/hdf5_detail.h"
+#include "formats/hdf5_detail.h"
 
 namespace polyfloe::io::hdf5 {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/hdf5_file.h"
+#include "formats/hdf5_file.h"
 
 namespace polyfloe::io::hdf5::detail {
 

@@ -1,9 +1,9 @@
-#include "io/field_file.h"
+#include "formats/field_file.h"
 
 #include <sstream>
 
-#include "io/atomic_file.h"
-#include "io/hdf5_file.h"
+#include "formats/atomic_file.h"
+#include "formats/hdf5_file.h"
 
 namespace polyfloe::io {
 

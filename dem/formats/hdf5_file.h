@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 
 namespace polyfloe::io::hdf5 {
 

@@ -1,4 +1,4 @@
-#include "io/output_manifest.h"
+#include "formats/output_manifest.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/atomic_file.h"
+#include "formats/atomic_file.h"
 
 namespace polyfloe::io {
 
