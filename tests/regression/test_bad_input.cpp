@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "run/checkpoint.h"
+#include "same_run.h"
 
 namespace fs = std::filesystem;
 
@@ -29,32 +30,11 @@ namespace {
 
 const fs::path kCorpus = fs::path(POLYFLOE_SOURCE_DIR) / "tests" / "bad_input";
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using polyfloe::tsupport::slurp;
 
 // Runs polyfloe with `args`, stdout and stderr to `log`; returns the exit code, or -signal.
 int run_polyfloe(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> all{POLYFLOE_BINARY};
-  all.insert(all.end(), args.begin(), args.end());
-  const pid_t pid = fork();
-  if (pid == 0) {
-    if (std::FILE* f = std::fopen(log.c_str(), "w")) {
-      dup2(fileno(f), 1);
-      dup2(fileno(f), 2);
-    }
-    std::vector<char*> argv;
-    for (std::string& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+  return polyfloe::tsupport::run_to_end(args, log);
 }
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {

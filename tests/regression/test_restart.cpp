@@ -2,7 +2,7 @@
 // newest checkpoint each time ends bitwise where the uninterrupted run ends (every HDF5 dataset, every VTK file,
 // the final state); after every kill each completed frame and the newest checkpoint read back; bad checkpoints
 // and mismatched restarts are refused with exit code 2 before any output is touched; an unstable run leaves its
-// state for inspection. And the thread count does not change a run: 2 threads give the 1-thread run bitwise.
+// state for inspection.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -22,95 +22,22 @@
 #include "formats/hdf5_file.h"
 #include "pvd.h"
 #include "run/checkpoint.h"
+#include "same_run.h"
 
 namespace fs = std::filesystem;
 using polyfloe::io::hdf5::Dataset;
 using polyfloe::io::hdf5::File;
 using polyfloe::io::hdf5::Group;
 
+using polyfloe::tsupport::expect_same_run;
+using polyfloe::tsupport::run_to_end;
+using polyfloe::tsupport::scratch;
+using polyfloe::tsupport::slurp;
+using polyfloe::tsupport::spawn;
+using polyfloe::tsupport::wait_for;
+
 namespace {
-
 const std::string kSource = POLYFLOE_SOURCE_DIR;
-
-// Starts polyfloe with `args`, stdout and stderr to `log`.
-pid_t spawn(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> all{POLYFLOE_BINARY};
-  all.insert(all.end(), args.begin(), args.end());
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::FILE* f = std::fopen(log.c_str(), "w");
-    if (f) {
-      dup2(fileno(f), 1);
-      dup2(fileno(f), 2);
-    }
-    std::vector<char*> argv;
-    for (std::string& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-// Exit code, or -signal.
-int wait_for(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-}
-
-int run_to_end(const std::vector<std::string>& args, const fs::path& log) { return wait_for(spawn(args, log)); }
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Every dataset of the file by path, as raw bytes of its values read as doubles / integers.
-void collect(const Group& g, const std::string& prefix, std::vector<std::pair<std::string, std::vector<std::uint64_t>>>& out) {
-  using polyfloe::io::hdf5::DType;
-  for (const Group::Child& c : g.children()) {
-    const std::string name = prefix + "/" + c.name;
-    if (c.group) {
-      collect(g.open_group(c.name), name, out);
-      continue;
-    }
-    const Dataset d = g.open_dataset(c.name);
-    std::vector<std::uint64_t> bits;
-    if (d.dtype() == DType::f64 || d.dtype() == DType::f32) {
-      for (double v : d.read<double>()) {
-        std::uint64_t b;
-        std::memcpy(&b, &v, sizeof b);
-        bits.push_back(b);
-      }
-    } else if (d.dtype() == DType::u64) {
-      bits = d.read<std::uint64_t>();
-    } else {
-      for (std::int64_t v : d.read<std::int64_t>()) bits.push_back(static_cast<std::uint64_t>(v));
-    }
-    out.emplace_back(name, std::move(bits));
-  }
-}
-
-std::vector<std::pair<std::string, std::vector<std::uint64_t>>> datasets(const fs::path& file) {
-  const File f(file, File::Mode::read_only);
-  std::vector<std::pair<std::string, std::vector<std::uint64_t>>> out;
-  collect(f.root(), "", out);
-  return out;
-}
-
-// The files of a run's VTK series, relative to its folder.
-std::vector<std::string> vtk_files(const fs::path& dir) {
-  std::vector<std::string> out;
-  for (const char* sub : {"floes", "contacts", "bonds", "velocity"}) {
-    if (!fs::is_directory(dir / sub)) continue;
-    for (const auto& e : fs::directory_iterator(dir / sub)) out.push_back(std::string(sub) + "/" + e.path().filename().string());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 // After a kill: every frame the series list is complete and readable, results.h5 opens and holds at least the
 // frames of the newest checkpoint, and that checkpoint reads back.
@@ -195,54 +122,6 @@ Interrupted run_with_kills(const std::vector<std::string>& args, const fs::path&
   return r;
 }
 
-void expect_same_run(const fs::path& a, const fs::path& b) {
-  const auto da = datasets(a / "results.h5"), db = datasets(b / "results.h5");
-  ASSERT_EQ(da.size(), db.size());
-  for (std::size_t k = 0; k < da.size(); ++k) {
-    EXPECT_EQ(da[k].first, db[k].first);
-    EXPECT_TRUE(da[k].second == db[k].second) << "results.h5:" << da[k].first << " differs";
-  }
-  const auto fa = vtk_files(a), fb = vtk_files(b);
-  EXPECT_EQ(fa, fb);
-  for (const std::string& f : fa) EXPECT_TRUE(slurp(a / f) == slurp(b / f)) << f << " differs";
-  for (const char* pvd : {"floes.pvd", "contacts.pvd", "bonds.pvd", "velocity.pvd"})
-    EXPECT_EQ(slurp(a / pvd), slurp(b / pvd)) << pvd;
-  // The final state, including what no output shows (forces, drift loads, spring history, bond stresses).
-  const auto ca = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(a));
-  const auto cb = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(b));
-  EXPECT_EQ(ca.frames, cb.frames);
-  const auto& wa = ca.world;
-  const auto& wb = cb.world;
-  EXPECT_EQ(wa.steps, wb.steps);
-  EXPECT_EQ(std::memcmp(&wa.time, &wb.time, sizeof wa.time), 0);
-  auto same = [](const auto& x, const auto& y) {
-    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof x[0]) == 0);
-  };
-  EXPECT_TRUE(same(wa.position, wb.position));
-  EXPECT_TRUE(same(wa.velocity, wb.velocity));
-  EXPECT_TRUE(same(wa.yaw, wb.yaw));
-  EXPECT_TRUE(same(wa.omega, wb.omega));
-  EXPECT_TRUE(same(wa.force, wb.force));
-  EXPECT_TRUE(same(wa.torque, wb.torque));
-  EXPECT_TRUE(same(wa.lin_force, wb.lin_force));
-  ASSERT_EQ(wa.contact_history.size(), wb.contact_history.size());
-  for (std::size_t k = 0; k < wa.contact_history.size(); ++k) {
-    EXPECT_TRUE(wa.contact_history[k].first == wb.contact_history[k].first);
-    EXPECT_EQ(std::memcmp(&wa.contact_history[k].second, &wb.contact_history[k].second, sizeof(polyfloe::contact::PlanarHistory)), 0);
-  }
-  ASSERT_EQ(wa.bonds.has_value(), wb.bonds.has_value());
-  if (wa.bonds) {
-    EXPECT_TRUE(same(wa.bonds->point_intact, wb.bonds->point_intact));
-    EXPECT_TRUE(same(wa.bonds->point_sigma, wb.bonds->point_sigma));
-    EXPECT_TRUE(same(wa.bonds->face_broken_time, wb.bonds->face_broken_time));
-  }
-}
-
-// A scratch folder of this process (tests may run concurrently).
-fs::path scratch(const std::string& name) {
-  return fs::temp_directory_path() / ("polyfloe_restart_" + name + "_" + std::to_string(getpid()));
-}
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -324,33 +203,6 @@ TEST(Restart, KilledFrozenSheetRunRestartsBitwise) {
   const Interrupted r = run_with_kills(args, base / "killed", 2, wall, 0.3, 7);
   EXPECT_GE(r.kills, 1);
   expect_same_run(base / "whole", base / "killed");
-  fs::remove_all(base);
-}
-
-TEST(Threads, TwoThreadsGiveTheOneThreadRunBitwise) {
-#ifndef _OPENMP
-  GTEST_SKIP() << "built without OpenMP: the step is serial";
-#endif
-  // The channel scene (contacts with friction history, every drift term, walls) and a frozen sheet breaking
-  // (bonds), each run with 1 and 2 threads: every dataset, VTK file and the final state must be the same bits.
-  const std::vector<std::vector<std::string>> scenes{
-      {"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=3", "--set", "output.interval=0.5"},
-      {"run", kSource + "/dem/scenes/uniaxial_compression.yaml", "--set", "ice_sheet.region=[0,0,60,60]", "--set",
-       "ice_sheet.cell_size=8", "--set", "ice_sheet.bonds.tensile_strength=1e5", "--set",
-       "ice_sheet.bonds.shear_strength=1e5", "--set", "floes.0.position=[-10,30]", "--set",
-       "floes.1.position=[70,30]", "--set", "run.duration=0.2", "--set", "output.interval=0.02"}};
-  const fs::path base = scratch("threads");
-  for (std::size_t k = 0; k < scenes.size(); ++k) {
-    fs::remove_all(base);
-    fs::create_directories(base);
-    for (const char* t : {"1", "2"}) {
-      std::vector<std::string> a = scenes[k];
-      a.insert(a.end(), {"--threads", t, "-o", (base / t).string()});
-      ASSERT_EQ(run_to_end(a, base / (std::string(t) + ".log")), 0) << slurp(base / (std::string(t) + ".log"));
-    }
-    SCOPED_TRACE(scenes[k][1]);
-    expect_same_run(base / "1", base / "2");
-  }
   fs::remove_all(base);
 }
 
