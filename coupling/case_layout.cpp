@@ -31,7 +31,6 @@ void check_case(const fs::path& dir) {
     fail(dir, "no mesh (constant/polyMesh is missing): run the case's Allrun, or blockMesh, first");
 }
 
-
 struct TimeDir {
   double t;
   std::string name;
@@ -47,12 +46,12 @@ std::vector<TimeDir> times_with_u(const fs::path& dir) {
     double t = 0.0;
     const auto [end, err] = std::from_chars(name.data(), name.data() + name.size(), t);
     if (err != std::errc() || end != name.data() + name.size() || !std::isfinite(t)) continue;
-    if (fs::is_regular_file(e.path() / "U", ec) || fs::is_regular_file(e.path() / "U.gz", ec)) times.push_back({t, name});
+    if (fs::is_regular_file(e.path() / "U", ec) || fs::is_regular_file(e.path() / "U.gz", ec))
+      times.push_back({t, name});
   }
   std::sort(times.begin(), times.end(), [](const TimeDir& a, const TimeDir& b) { return a.t < b.t; });
   return times;
 }
-
 
 // processor0 ... processorN-1 (decomposePar's folders), checked to be numbered without a gap.
 int count_processors(const fs::path& dir) {
@@ -67,9 +66,10 @@ int count_processors(const fs::path& dir) {
     if (err == std::errc() && end == digits.data() + digits.size() && !digits.empty()) {
       ids.push_back(id);
     } else if (name.rfind("processors", 0) == 0) {
-      fail(dir, "a decomposed case written with OpenFOAM's collated file handler (" + name + "/), which VTK's "
-                "reader cannot read: reconstruct it with `reconstructPar -case " + dir.string() +
-                "`, or run the solver with -fileHandler uncollated");
+      fail(dir, "a decomposed case written with OpenFOAM's collated file handler (" + name +
+                    "/), which VTK's "
+                    "reader cannot read: reconstruct it with `reconstructPar -case " +
+                    dir.string() + "`, or run the solver with -fileHandler uncollated");
     }
   }
   std::sort(ids.begin(), ids.end());

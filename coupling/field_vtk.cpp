@@ -84,8 +84,8 @@ std::size_t write_field_vtk(const fs::path& pvd, const io::FieldFile& f) {
       throw io::IoError(target.string() + ": VTK could not write it");
     }
     io::commit_file_atomic(tmp, target);
-    index << "    <DataSet timestep=\"" << g.t[it] << "\" group=\"\" part=\"0\" file=\""
-          << (pvd.stem() / name).string() << "\"/>\n";
+    index << "    <DataSet timestep=\"" << g.t[it] << "\" group=\"\" part=\"0\" file=\"" << (pvd.stem() / name).string()
+          << "\"/>\n";
   }
   index << "  </Collection>\n</VTKFile>\n";
   io::write_file_atomic(pvd, index.str());

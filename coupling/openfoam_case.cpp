@@ -140,7 +140,8 @@ bool MeshSnapshot::sample(const Eigen::Vector3d& p, Eigen::Vector3d& u) const {
   thread_local vtkSmartPointer<vtkGenericCell> cell = vtkSmartPointer<vtkGenericCell>::New();
   thread_local std::vector<double> weights;
   const Mesh& m = *impl_->mesh;
-  if (weights.size() < static_cast<std::size_t>(m.max_cell_size)) weights.resize(static_cast<std::size_t>(m.max_cell_size));
+  if (weights.size() < static_cast<std::size_t>(m.max_cell_size))
+    weights.resize(static_cast<std::size_t>(m.max_cell_size));
   double x[3] = {p.x(), p.y(), p.z()}, pcoords[3];
   const vtkIdType id = m.locator->FindCell(x, 0.0, cell, pcoords, weights.data());
   if (id < 0) return false;
@@ -182,7 +183,8 @@ struct ScratchDir {
   fs::path path;
   ScratchDir() {
     std::string tmpl = (fs::temp_directory_path() / "polyfloe-foam.XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw CouplingError("cannot create a scratch folder under " + fs::temp_directory_path().string());
+    if (!mkdtemp(tmpl.data()))
+      throw CouplingError("cannot create a scratch folder under " + fs::temp_directory_path().string());
     path = tmpl;
   }
   ~ScratchDir() {
@@ -227,11 +229,13 @@ void expand_into(const fs::path& scratch, const fs::path& dir, const CaseLayout&
   fs::create_directory(scratch / "system");
   const std::string header = "FoamFile { version 2.0; format ascii; class dictionary; object ";
   std::ofstream(scratch / "system" / "controlDict")
-      << header << "controlDict; }\napplication postProcess;\nstartFrom latestTime;\nstopAt endTime;\nendTime 0;\n"
+      << header
+      << "controlDict; }\napplication postProcess;\nstartFrom latestTime;\nstopAt endTime;\nendTime 0;\n"
          "deltaT 1;\nwriteControl timeStep;\nwriteInterval 1;\nwriteFormat binary;\nwritePrecision 17;\n"
          "writeCompression off;\ntimeFormat general;\ntimePrecision 17;\n";
   std::ofstream(scratch / "system" / "fvSchemes")
-      << header << "fvSchemes; }\nddtSchemes { default Euler; }\ngradSchemes { default Gauss linear; }\n"
+      << header
+      << "fvSchemes; }\nddtSchemes { default Euler; }\ngradSchemes { default Gauss linear; }\n"
          "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
          "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n";
   std::ofstream(scratch / "system" / "fvSolution") << header << "fvSolution; }\n";
@@ -257,8 +261,10 @@ void expand_into(const fs::path& scratch, const fs::path& dir, const CaseLayout&
     std::size_t at = said.find("FOAM FATAL");
     std::string first = said.substr(at == std::string::npos ? 0 : at, 600);
     std::replace(first.begin(), first.end(), '\n', ' ');
-    fail(dir, "VTK's reader cannot read the velocity files, and OpenFOAM could not write them out "
-              "plainly (`postProcess -fields '(U)' -func 'writeObjects(U)'` on a copy: " + first + ")");
+    fail(dir,
+         "VTK's reader cannot read the velocity files, and OpenFOAM could not write them out "
+         "plainly (`postProcess -fields '(U)' -func 'writeObjects(U)'` on a copy: " +
+             first + ")");
   }
 }
 
@@ -311,8 +317,7 @@ std::shared_ptr<Mesh> build_mesh(vtkUnstructuredGrid* grid, const CaseTransform&
 // finite.
 std::vector<double> velocities(vtkDataArray* a, const CaseTransform& tf, const fs::path& dir, double t,
                                const char* what) {
-  const double c = std::cos(tf.rotate * M_PI / 180.0), s = std::sin(tf.rotate * M_PI / 180.0),
-               k = tf.velocity_scale;
+  const double c = std::cos(tf.rotate * M_PI / 180.0), s = std::sin(tf.rotate * M_PI / 180.0), k = tf.velocity_scale;
   std::vector<double> out(3 * static_cast<std::size_t>(a->GetNumberOfTuples()));
   for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) {
     double v[3];
@@ -355,7 +360,8 @@ std::vector<MeshSnapshot> read_times(const fs::path& read_dir, const fs::path& d
     auto* blocks = vtkMultiBlockDataSet::SafeDownCast(reader->GetOutput());
     vtkUnstructuredGrid* grid =
         blocks && blocks->GetNumberOfBlocks() > 0 ? vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(0)) : nullptr;
-    if (!grid || grid->GetNumberOfCells() == 0) fail(dir, "VTK's OpenFOAM reader found no internal mesh" + vtk_said.said());
+    if (!grid || grid->GetNumberOfCells() == 0)
+      fail(dir, "VTK's OpenFOAM reader found no internal mesh" + vtk_said.said());
     vtkDataArray* u = grid->GetPointData()->GetArray("U");
     if (!u || u->GetNumberOfComponents() != 3) {
       const std::string said = vtk_said.said();
@@ -366,11 +372,13 @@ std::vector<MeshSnapshot> read_times(const fs::path& read_dir, const fs::path& d
       std::string why = "no velocity U at time " + times_text({t}) + " (the reader could not read " + times_text({t}) +
                         "/U" + said + ")";
       if (said.find("directive") != std::string::npos)
-        why += "; VTK's reader cannot expand this directive, and OpenFOAM (its postProcess), which would, is not on "
-               "PATH: install OpenFOAM (bash scripts/setup.sh), or write the field out plainly with OpenFOAM's "
-               "`postProcess -fields '(U)' -func 'writeObjects(U)'` on a copy of the case" +
-               std::string(t == 0.0 ? ", or skip the initial condition (--times latest, or a range of the "
-               "solution times A:B)" : "");
+        why +=
+            "; VTK's reader cannot expand this directive, and OpenFOAM (its postProcess), which would, is not on "
+            "PATH: install OpenFOAM (bash scripts/setup.sh), or write the field out plainly with OpenFOAM's "
+            "`postProcess -fields '(U)' -func 'writeObjects(U)'` on a copy of the case" +
+            std::string(t == 0.0 ? ", or skip the initial condition (--times latest, or a range of the "
+                                   "solution times A:B)"
+                                 : "");
       fail(dir, why);
     }
     if (!mesh || mesh->grid->GetNumberOfPoints() != grid->GetNumberOfPoints() ||
@@ -389,8 +397,8 @@ std::vector<MeshSnapshot> read_times(const fs::path& read_dir, const fs::path& d
 
 }  // namespace
 
-std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSelection& which,
-                                             const CaseTransform& tf, CaseNotes* notes) {
+std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSelection& which, const CaseTransform& tf,
+                                             CaseNotes* notes) {
   if (!(tf.scale.array() > 0.0).all() || !tf.scale.allFinite() || !std::isfinite(tf.rotate) ||
       !tf.translate.allFinite() || !std::isfinite(tf.velocity_scale))
     fail(dir, "the transform's scale must be > 0 and every number finite");
@@ -411,7 +419,8 @@ std::vector<MeshSnapshot> read_openfoam_case(const fs::path& dir, const TimeSele
   // conditions): read a copy OpenFOAM wrote out plainly. decomposePar and parallel solvers write plain files.
   if (layout.decomposed)
     fail(dir, "a decomposed case whose velocity files VTK's reader cannot read" + unreadable +
-              ": reconstruct it with `reconstructPar -case " + dir.string() + "` and import the reconstructed case");
+                  ": reconstruct it with `reconstructPar -case " + dir.string() +
+                  "` and import the reconstructed case");
   const ScratchDir scratch;
   expand_into(scratch.path, dir, layout, chosen, tool);
   n.expanded = true;

@@ -57,7 +57,7 @@ class MeshSnapshot {
   MeshSnapshot(MeshSnapshot&&) noexcept;
   MeshSnapshot& operator=(MeshSnapshot&&) noexcept;
 
-  double time() const { return time_; }                    // [s]
+  double time() const { return time_; }                                  // [s]
   const Eigen::Matrix<double, 6, 1>& bounds() const { return bounds_; }  // xmin, xmax, ymin, ymax, zmin, zmax [m]
   std::size_t cells() const;
   // Cell c's parametric centre [m], OpenFOAM's own velocity there [m/s] (zero when the reader gave no cell values)
@@ -102,9 +102,9 @@ struct CaseTransform {
 // What reading a case found, for the summary a user reads.
 struct CaseNotes {
   CaseLayout layout;
-  std::vector<double> read;       // the times read [s]
-  bool initial_skipped = false;   // t = 0 left out by the automatic choice of a transient case
-  bool expanded = false;          // the velocity files were written out plainly by OpenFOAM for VTK's reader
+  std::vector<double> read;      // the times read [s]
+  bool initial_skipped = false;  // t = 0 left out by the automatic choice of a transient case
+  bool expanded = false;         // the velocity files were written out plainly by OpenFOAM for VTK's reader
 };
 
 // Reads U on the internal mesh at the selected times (patches and every other field are not read), decomposed cases

@@ -22,7 +22,8 @@ std::string grid_spec_error(const GridSpec& g) {
   if (!(g.cell >= 0.0) || !std::isfinite(g.cell)) return "the cell size must be > 0 m (or 0: the mesh's finest cell)";
   if (g.bounds) {
     const Eigen::Vector4d& b = *g.bounds;
-    if (!b.allFinite() || !(b[2] > b[0]) || !(b[3] > b[1])) return "the bounds must be x0, y0, x1, y1 with x1 > x0 and y1 > y0";
+    if (!b.allFinite() || !(b[2] > b[0]) || !(b[3] > b[1]))
+      return "the bounds must be x0, y0, x1, y1 with x1 > x0 and y1 > y0";
     if ((b[2] - b[0]) / g.cell > 1e5 || (b[3] - b[1]) / g.cell > 1e5) return "more than 100,000 nodes along an axis";
   }
   if (g.z.empty()) return "no z level";
@@ -79,8 +80,8 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
       std::ostringstream why;
       why << source << ": level " << z << " m lies at z = " << surface + z << " m, outside the mesh's depth [" << zlo
           << ", " << zhi << "] m (the water surface taken at z = " << surface
-          << (spec.surface ? " m, --surface" : " m, the top of the mesh")
-          << "); give levels from " << zlo - surface << " to " << zhi - surface << " m (--z), or the surface (--surface Z)";
+          << (spec.surface ? " m, --surface" : " m, the top of the mesh") << "); give levels from " << zlo - surface
+          << " to " << zhi - surface << " m (--z), or the surface (--surface Z)";
       throw CouplingError(why.str());
     }
     g.z.push_back(z);

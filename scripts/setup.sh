@@ -14,7 +14,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  g++ cmake ninja-build pkg-config git
+  g++ cmake ninja-build pkg-config git clang-format
   libeigen3-dev libccd-dev libvtk9-dev libhdf5-dev libyaml-cpp-dev libboost-dev
   libgtest-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-vtk9

@@ -136,7 +136,8 @@ Args parse(int argc, char** argv) {
       a.grid.z = numbers(o, value());
     } else if (o == "--max-nodes") {
       const std::vector<double> n = numbers(o, value());
-      if (n.size() != 1 || !(n[0] >= 1.0) || n[0] > 1e10) throw UsageError("--max-nodes: expected a count in [1, 1e10]");
+      if (n.size() != 1 || !(n[0] >= 1.0) || n[0] > 1e10)
+        throw UsageError("--max-nodes: expected a count in [1, 1e10]");
       a.grid.max_nodes = n[0];
     } else if (o == "--surface") {
       const std::vector<double> z = numbers(o, value());
@@ -145,9 +146,12 @@ Args parse(int argc, char** argv) {
     } else if (o == "--times") {
       const std::string w = value();
       using K = coupling::TimeSelection::Kind;
-      if (w == "auto") a.times.kind = K::automatic;
-      else if (w == "all") a.times.kind = K::all;
-      else if (w == "latest") a.times.kind = K::latest;
+      if (w == "auto")
+        a.times.kind = K::automatic;
+      else if (w == "all")
+        a.times.kind = K::all;
+      else if (w == "latest")
+        a.times.kind = K::latest;
       else if (const std::size_t colon = w.find(':'); colon != std::string::npos) {  // A:B, either end open
         a.times.kind = K::range;
         const std::string lo = w.substr(0, colon), hi = w.substr(colon + 1);
@@ -161,12 +165,14 @@ Args parse(int argc, char** argv) {
       }
     } else if (o == "--scale") {
       const std::vector<double> k = numbers(o, value());
-      if ((k.size() != 1 && k.size() != 3) || std::any_of(k.begin(), k.end(), [](double x) { return !(x > 0.0) || x > 1e9; }))
+      if ((k.size() != 1 && k.size() != 3) ||
+          std::any_of(k.begin(), k.end(), [](double x) { return !(x > 0.0) || x > 1e9; }))
         throw UsageError("--scale: expected one factor S or three SX,SY,SZ, each in (0, 1e9]");
       a.transform.scale = k.size() == 1 ? Eigen::Vector3d::Constant(k[0]) : Eigen::Vector3d(k[0], k[1], k[2]);
     } else if (o == "--rotate") {
       const std::vector<double> d = numbers(o, value());
-      if (d.size() != 1 || std::abs(d[0]) > 360.0) throw UsageError("--rotate: expected one angle in [-360, 360] degrees");
+      if (d.size() != 1 || std::abs(d[0]) > 360.0)
+        throw UsageError("--rotate: expected one angle in [-360, 360] degrees");
       a.transform.rotate = d[0];
     } else if (o == "--translate") {
       const std::vector<double> d = numbers(o, value());
@@ -175,7 +181,8 @@ Args parse(int argc, char** argv) {
       a.transform.translate = Eigen::Vector3d(d[0], d[1], d[2]);
     } else if (o == "--velocity-scale") {
       const std::vector<double> k = numbers(o, value());
-      if (k.size() != 1 || !(k[0] > 0.0) || k[0] > 1e6) throw UsageError("--velocity-scale: expected one factor in (0, 1e6]");
+      if (k.size() != 1 || !(k[0] > 0.0) || k[0] > 1e6)
+        throw UsageError("--velocity-scale: expected one factor in (0, 1e6]");
       a.transform.velocity_scale = k[0];
     } else if (o == "--no-vtk") {
       a.vtk = false;
@@ -200,15 +207,20 @@ Args parse(int argc, char** argv) {
   }
   const std::size_t want = a.command == "compare" ? 2 : 1;
   if (a.positional.size() != want)
-    throw UsageError(a.command + " takes " + (want == 2 ? "CASE FILE" : a.command == "info" ? "FILE" : "CASE") +
+    throw UsageError(a.command + " takes " +
+                     (want == 2             ? "CASE FILE"
+                      : a.command == "info" ? "FILE"
+                                            : "CASE") +
                      ", got " + std::to_string(a.positional.size()) + " argument(s)");
   if (a.command == "import" && a.output.empty()) throw UsageError("import needs -o FILE");
   if (a.command == "import") {
     // Checked before the (long) import: the file is HDF5 (.h5), its .pvd and .vtr frames go beside it.
     const std::string ext = a.output.extension().string();
     if (ext != ".h5" && ext != ".hdf5")
-      throw UsageError("-o " + a.output.string() + ": a field file is HDF5, named FILE.h5 (its ParaView series "
-                       "FILE.pvd and FILE/ go beside it), got the extension '" + ext + "'");
+      throw UsageError("-o " + a.output.string() +
+                       ": a field file is HDF5, named FILE.h5 (its ParaView series "
+                       "FILE.pvd and FILE/ go beside it), got the extension '" +
+                       ext + "'");
     std::error_code ec;
     const fs::path parent = fs::absolute(a.output, ec).parent_path();
     if (!fs::is_directory(parent, ec))
@@ -220,8 +232,10 @@ Args parse(int argc, char** argv) {
   if (a.command != "info" && !a.positional.empty()) {
     fs::path c = a.positional[0];
     std::error_code ec;
-    if (c.extension() == ".foam" && !fs::is_directory(c, ec)) c = c.parent_path();
-    else if (c.filename() == "controlDict" && c.parent_path().filename() == "system") c = c.parent_path().parent_path();
+    if (c.extension() == ".foam" && !fs::is_directory(c, ec))
+      c = c.parent_path();
+    else if (c.filename() == "controlDict" && c.parent_path().filename() == "system")
+      c = c.parent_path().parent_path();
     a.positional[0] = c.empty() ? "." : c.string();
   }
   return a;
@@ -267,8 +281,8 @@ std::string axis_text(const std::vector<double>& a, const char* unit) {
 void describe(const io::FieldFile& f) {
   const forcing::GridData& g = f.grid;
   std::cout << "  x: " << axis_text(g.x, "m") << "\n  y: " << axis_text(g.y, "m") << "\n  z: " << axis_text(g.z, "m")
-            << "\n  t: " << axis_text(g.t, "s") << (g.t.size() == 1 ? " (steady)" : "") << "\n  water: "
-            << 100.0 * wet_fraction(g) << " % of the nodes; speed up to " << max_speed(g) << " m/s\n";
+            << "\n  t: " << axis_text(g.t, "s") << (g.t.size() == 1 ? " (steady)" : "")
+            << "\n  water: " << 100.0 * wet_fraction(g) << " % of the nodes; speed up to " << max_speed(g) << " m/s\n";
 }
 
 int import(const Args& a) {
@@ -276,7 +290,8 @@ int import(const Args& a) {
   const fs::path case_dir = a.positional[0];
   const bool steady = coupling::case_is_steady(case_dir);
   coupling::CaseNotes notes;
-  const std::vector<coupling::MeshSnapshot> snaps = coupling::read_openfoam_case(case_dir, a.times, a.transform, &notes);
+  const std::vector<coupling::MeshSnapshot> snaps =
+      coupling::read_openfoam_case(case_dir, a.times, a.transform, &notes);
   // A long import says how far it is, every 2 s after the first 2 (stderr: the summary stays on stdout).
   auto last = std::chrono::steady_clock::now();
   const auto progress = [&](double done) {
@@ -297,11 +312,11 @@ int import(const Args& a) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto& b = snaps.front().bounds();
   std::cout << "Imported " << case_dir.string() << " (" << snaps.front().cells() << " cells, the finest "
-            << snaps.front().min_cell_size() << " m across, "
-            << (steady ? "steady" : "transient") << ", " << snaps.size() << " time(s)"
-            << (notes.layout.decomposed ? ", decomposed: read from " + std::to_string(notes.layout.processors) +
-                                              " processor folders"
-                                        : std::string())
+            << snaps.front().min_cell_size() << " m across, " << (steady ? "steady" : "transient") << ", "
+            << snaps.size() << " time(s)"
+            << (notes.layout.decomposed
+                    ? ", decomposed: read from " + std::to_string(notes.layout.processors) + " processor folders"
+                    : std::string())
             << ") into " << a.output.string() << " in " << wall << " s:\n";
   std::cout << "  times read: " << times_list(notes.read) << " s of the case's " << times_list(notes.layout.times)
             << " s" << (notes.initial_skipped ? " (t = 0, the initial condition, left out; --times all keeps it)" : "")
@@ -313,8 +328,8 @@ int import(const Args& a) {
     std::cout << "  transformed: scale " << a.transform.scale.transpose() << ", rotated " << a.transform.rotate
               << " degrees about z, shifted by " << a.transform.translate.transpose() << " m, velocities x "
               << a.transform.velocity_scale << "\n";
-  std::cout << "  mesh: x " << b[0] << " to " << b[1] << " m, y " << b[2] << " to " << b[3]
-            << " m, z " << b[4] << " to " << b[5] << " m"
+  std::cout << "  mesh: x " << b[0] << " to " << b[1] << " m, y " << b[2] << " to " << b[3] << " m, z " << b[4]
+            << " to " << b[5] << " m"
             << (snaps.front().depth_averaged() ? " (one cell through the depth: a 2-D case)" : "")
             << "; water surface at z = " << a.grid.surface.value_or(b[5])
             << (a.grid.surface ? " m (--surface)\n" : " m (the top of the mesh; --surface to change)\n");
@@ -352,7 +367,8 @@ int compare(const Args& a) {
   const fs::path case_dir = a.positional[0], file = a.positional[1];
   const io::FieldFile f = io::read_field_file(file);
   const forcing::GridData& g = f.grid;
-  auto snaps = std::make_shared<std::vector<coupling::MeshSnapshot>>(coupling::read_openfoam_case(case_dir, a.times, a.transform));
+  auto snaps = std::make_shared<std::vector<coupling::MeshSnapshot>>(
+      coupling::read_openfoam_case(case_dir, a.times, a.transform));
   if (snaps->size() != g.t.size())
     throw coupling::CouplingError(file.string() + " holds " + std::to_string(g.t.size()) + " snapshot(s), " +
                                   case_dir.string() + " " + std::to_string(snaps->size()) +

@@ -236,8 +236,8 @@ int run_spatial_scene(const Args& args, const scene::Scene& sc) {
     const run::RunSummary s = run::run_spatial(sc, *world, opt);
     std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
     if (s.first_contact)
-      std::cout << "Contacts: the first at t = " << *s.first_contact << " s; " << s.contact_steps << " of "
-                << s.steps << " steps had one.\n";
+      std::cout << "Contacts: the first at t = " << *s.first_contact << " s; " << s.contact_steps << " of " << s.steps
+                << " steps had one.\n";
     else
       std::cout << "No contact during the run: no two bodies touched (a scene about an impact did not reach it; "
                    "check the bodies' positions, velocities and run.duration).\n";
@@ -268,8 +268,8 @@ int exec_field_tool(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "field") return exec_field_tool(argc, argv);
-  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
-                    std::string(argv[1]) == "help")) {
+  if (argc >= 2 &&
+      (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" || std::string(argv[1]) == "help")) {
     std::cout << kUsage;
     return run::kExitOk;
   }
@@ -373,8 +373,8 @@ int main(int argc, char** argv) {
     if (s.steps == 0)
       std::cout << "Nothing to run: the checkpoint is the run's end (t = " << s.simulated << " s).\n";
     else if (s.start_time > 0.0)
-      std::cout << "Done: " << s.steps << " steps, t = " << s.start_time << " -> " << s.simulated
-                << " s simulated in " << s.wall << " s wall (resumed from the checkpoint).\n";
+      std::cout << "Done: " << s.steps << " steps, t = " << s.start_time << " -> " << s.simulated << " s simulated in "
+                << s.wall << " s wall (resumed from the checkpoint).\n";
     else
       std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
     if (s.channel_area_passed) {

@@ -26,7 +26,8 @@ BondSet::BondSet(const BondMaterial& m) : material_(m) {
   if (!(m.poisson_ratio >= 0.0 && m.poisson_ratio < 0.5)) bad("Poisson's ratio must lie in [0, 0.5)");
   if (!(m.tensile_strength > 0.0)) bad("tensile strength must be positive");
   if (!(m.shear_strength > 0.0)) bad("shear strength must be positive");
-  if (!(m.friction_angle >= 0.0 && m.friction_angle < 0.5 * 3.141592653589793)) bad("friction angle must lie in [0, pi/2)");
+  if (!(m.friction_angle >= 0.0 && m.friction_angle < 0.5 * 3.141592653589793))
+    bad("friction angle must lie in [0, pi/2)");
   if (!(m.damping_ratio >= 0.0 && m.damping_ratio <= 10.0)) bad("damping ratio must lie in [0, 10]");
   if (m.points_per_face < 2 || m.points_per_face > 64) bad("points per face must lie in 2..64");
   tan_phi_ = std::tan(m.friction_angle);
@@ -48,10 +49,10 @@ void BondSet::add_face(const FaceDesc& f) {
   if (n.dot(f.centre_b - f.centre_a) < 0.0) n = -n;
   const double da = n.dot(f.p0 - f.centre_a), db = n.dot(f.centre_b - f.p0);
   if (!(da > 0.0) || !(db > 0.0)) bad("each element's centroid must lie on its own side of the shared edge");
-  const double kn = material_.youngs_modulus / (da + db);                       // [Pa/m]
-  const double ks = kn / (2.0 * (1.0 + material_.poisson_ratio));               // [Pa/m]
+  const double kn = material_.youngs_modulus / (da + db);          // [Pa/m]
+  const double ks = kn / (2.0 * (1.0 + material_.poisson_ratio));  // [Pa/m]
   const int k = material_.points_per_face;
-  const double area = length * f.thickness / k;                                // [m^2]
+  const double area = length * f.thickness / k;  // [m^2]
 
   const std::size_t face = face_a_.size();
   face_a_.push_back(f.a);
@@ -232,8 +233,8 @@ void BondSet::restore(const BondState& s) {
   if (s.face_intact.size() != nf || s.face_points_left.size() != nf || s.face_broken_time.size() != nf ||
       s.point_intact.size() != np || s.point_sigma.size() != np || s.point_tau.size() != np) {
     throw std::invalid_argument("bond state for " + std::to_string(s.face_intact.size()) + " faces and " +
-                                std::to_string(s.point_intact.size()) + " points; this ice has " +
-                                std::to_string(nf) + " faces and " + std::to_string(np) + " points");
+                                std::to_string(s.point_intact.size()) + " points; this ice has " + std::to_string(nf) +
+                                " faces and " + std::to_string(np) + " points");
   }
   std::size_t faces_left = 0, points_left = 0;
   for (std::size_t f = 0; f < nf; ++f) {

@@ -37,44 +37,44 @@ namespace polyfloe::bonds {
 using geometry::Vec2;
 
 struct BondMaterial {
-  double youngs_modulus = 1.0e9;     // E [Pa]
-  double poisson_ratio = 0.3;        // nu [-]
-  double tensile_strength = 1.5e6;   // normal (tensile) bond strength sigma_n-bar [Pa]
-  double shear_strength = 1.5e6;     // cohesion c of the Mohr-Coulomb criterion [Pa]
-  double friction_angle = 0.0;       // phi [rad]: shear capacity c - sigma_n tan(phi)
-  double damping_ratio = 0.1;        // zeta [-] of each point's spring
-  int points_per_face = 4;           // >= 2
+  double youngs_modulus = 1.0e9;    // E [Pa]
+  double poisson_ratio = 0.3;       // nu [-]
+  double tensile_strength = 1.5e6;  // normal (tensile) bond strength sigma_n-bar [Pa]
+  double shear_strength = 1.5e6;    // cohesion c of the Mohr-Coulomb criterion [Pa]
+  double friction_angle = 0.0;      // phi [rad]: shear capacity c - sigma_n tan(phi)
+  double damping_ratio = 0.1;       // zeta [-] of each point's spring
+  int points_per_face = 4;          // >= 2
 };
 
 // One face at the moment it is frozen: the two elements (indices in the caller's arrays and stable ids), the
 // shared edge in the world frame, the thickness, and the two elements' poses then.
 struct FaceDesc {
-  int a = 0, b = 0;                    // element indices
-  std::uint64_t id_a = 0, id_b = 0;    // stable ids
-  Vec2 p0, p1;                         // ends of the shared edge [m]
-  double thickness = 1.0;              // [m]
-  Vec2 centre_a, centre_b;             // element centroids [m]
-  double yaw_a = 0.0, yaw_b = 0.0;     // [rad]
+  int a = 0, b = 0;                  // element indices
+  std::uint64_t id_a = 0, id_b = 0;  // stable ids
+  Vec2 p0, p1;                       // ends of the shared edge [m]
+  double thickness = 1.0;            // [m]
+  Vec2 centre_a, centre_b;           // element centroids [m]
+  double yaw_a = 0.0, yaw_b = 0.0;   // [rad]
 };
 
 // The state the bond forces read: element poses and velocities (all elements, indexed as in FaceDesc).
 struct ElementState {
-  std::span<const Vec2> position;      // centroid [m]
-  std::span<const double> yaw;         // [rad]
-  std::span<const Vec2> velocity;      // [m/s]
-  std::span<const double> omega;       // [rad/s]
-  std::span<const double> mass;        // [kg]; fixed or kinematic elements: +inf
+  std::span<const Vec2> position;  // centroid [m]
+  std::span<const double> yaw;     // [rad]
+  std::span<const Vec2> velocity;  // [m/s]
+  std::span<const double> omega;   // [rad/s]
+  std::span<const double> mass;    // [kg]; fixed or kinematic elements: +inf
 };
 
 // The part of a BondSet that changes as the ice breaks: what a checkpoint stores. Everything else is rebuilt from
 // the scene (faces are frozen from the initial geometry).
 struct BondState {
-  std::vector<std::uint8_t> face_intact;      // [F]
+  std::vector<std::uint8_t> face_intact;       // [F]
   std::vector<std::int32_t> face_points_left;  // [F]
-  std::vector<double> face_broken_time;       // [F] [s]; NaN while intact
-  std::vector<std::uint8_t> point_intact;     // [P]
+  std::vector<double> face_broken_time;        // [F] [s]; NaN while intact
+  std::vector<std::uint8_t> point_intact;      // [P]
   std::vector<double> point_sigma, point_tau;  // [P] [Pa]
-  double max_sigma = 0.0, max_tau = 0.0;      // [Pa]
+  double max_sigma = 0.0, max_tau = 0.0;       // [Pa]
 };
 
 class BondSet {
@@ -121,12 +121,12 @@ class BondSet {
   std::uint64_t face_id_b(std::size_t f) const { return face_id_b_[f]; }
   bool face_intact(std::size_t f) const { return face_intact_[f] != 0; }
   double face_broken_time(std::size_t f) const { return face_broken_time_[f]; }  // [s]; NaN while intact
-  Vec2 face_normal0(std::size_t f) const { return face_normal_[f]; }  // world normal when frozen
-  double face_length(std::size_t f) const { return face_length_[f]; }  // [m]
-  Vec2 face_midpoint0(std::size_t f) const { return face_mid_[f]; }    // [m] when frozen
+  Vec2 face_normal0(std::size_t f) const { return face_normal_[f]; }             // world normal when frozen
+  double face_length(std::size_t f) const { return face_length_[f]; }            // [m]
+  Vec2 face_midpoint0(std::size_t f) const { return face_mid_[f]; }              // [m] when frozen
   std::size_t face_first_point(std::size_t f) const { return face_first_[f]; }
   bool point_intact(std::size_t p) const { return point_intact_[p] != 0; }
-  Vec2 point_anchor_a(std::size_t p) const { return anchor_a_[p]; }  // lever in element a's body frame [m]
+  Vec2 point_anchor_a(std::size_t p) const { return anchor_a_[p]; }    // lever in element a's body frame [m]
   double point_sigma(std::size_t p) const { return point_sigma_[p]; }  // last normal stress [Pa], > 0 tension
   double point_tau(std::size_t p) const { return point_tau_[p]; }      // last shear stress [Pa]
   // Of the last apply(): the largest tensile stress and the largest |shear| stress over intact points [Pa].

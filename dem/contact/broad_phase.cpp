@@ -86,7 +86,10 @@ void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<cons
       continue;
     }
     const int x0 = cx(boxes[i].lo.x()), y0 = cy(boxes[i].lo.y()), x1 = cx(boxes[i].hi.x()), y1 = cy(boxes[i].hi.y());
-    ranges_[4 * i] = x0; ranges_[4 * i + 1] = y0; ranges_[4 * i + 2] = x1; ranges_[4 * i + 3] = y1;
+    ranges_[4 * i] = x0;
+    ranges_[4 * i + 1] = y0;
+    ranges_[4 * i + 2] = x1;
+    ranges_[4 * i + 3] = y1;
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) ++cell_start_[cell_id(x, y) + 1];
   }

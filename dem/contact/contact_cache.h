@@ -70,8 +70,10 @@ class HistoryStore {
   std::uint64_t generation() const { return generation_; }
   // Record this step's value; the pair survives into the next step. Each pair is stored at most once a step.
   void store(const PairKey& k, const Value& v) {
-    if (cur_count_ < cur_.size()) cur_[cur_count_] = {k, v};
-    else cur_.emplace_back(k, v);
+    if (cur_count_ < cur_.size())
+      cur_[cur_count_] = {k, v};
+    else
+      cur_.emplace_back(k, v);
     ++cur_count_;
   }
   // Or, for a parallel loop: room for this step's `count` stores, each then written at its own place (the order of
@@ -112,7 +114,7 @@ class HistoryStore {
     prepare_lookups();
     if (index_.empty()) return -1;
     const std::size_t mask = index_.size() - 1;
-    for (std::size_t h = PairKeyHash{}(k) & mask;; h = (h + 1) & mask) {
+    for (std::size_t h = PairKeyHash{}(k)&mask;; h = (h + 1) & mask) {
       const std::int32_t i = index_[h];
       if (i < 0 || prev_[static_cast<std::size_t>(i)].first == k) return i;
     }

@@ -22,11 +22,11 @@ enum class DampingModel {
 
 // Where and along what the normal force acts (docs/model.md §3).
 enum class ForceModel {
-  centroid,  // along the chord normal at the overlap centroid: a flat face pressed into another resists tilting
-             // like an elastic foundation; not exactly conservative for corner contacts (2 % energy drift over
-             // 70,000 elastic contact-steps of random polygons)
-  gradient,  // -F_n grad(depth) over both bodies' positions and rotations: exactly conservative with
-             // W = 2/5 k_n d^2.5, but a flat face has no tilt stiffness (it settles on a corner)
+  centroid,    // along the chord normal at the overlap centroid: a flat face pressed into another resists tilting
+               // like an elastic foundation; not exactly conservative for corner contacts (2 % energy drift over
+               // 70,000 elastic contact-steps of random polygons)
+  gradient,    // -F_n grad(depth) over both bodies' positions and rotations: exactly conservative with
+               // W = 2/5 k_n d^2.5, but a flat face has no tilt stiffness (it settles on a corner)
   foundation,  // the exact gradient of the elastic-foundation potential W = kappa ∫_{A∩B} (d_A + d_B) dA
                // (contact/foundation.h), kappa = E*/(2 sqrt 2): continuously differentiable through every change
                // of the overlap's shape, Hertz for round contacts, a restoring tilt stiffness for flat faces
@@ -48,7 +48,7 @@ struct ContactLawSettings {
   double friction = 0.3;          // Coulomb coefficient mu [-]
   DampingModel damping = DampingModel::speed_independent;
   ForceModel force_model = ForceModel::centroid;
-  double reference_speed = 1.0;   // impact speed at which the paper damping model hits e exactly [m/s]
+  double reference_speed = 1.0;  // impact speed at which the paper damping model hits e exactly [m/s]
 };
 
 inline constexpr double kInfinite = std::numeric_limits<double>::infinity();
@@ -122,8 +122,8 @@ class ContactLaw {
   // depth d [m], depth_rate d_dot [m/s] (> 0 while approaching), tangential slip velocity of B relative to A along
   // t [m/s], previous spring s [m], time step [s].
   // Inline: the step's pair loop shares its square root of the depth.
-  ContactForce evaluate(const PairCoefficients& c, double depth, double depth_rate, double slip_velocity,
-                        double spring, double dt) const {
+  ContactForce evaluate(const PairCoefficients& c, double depth, double depth_rate, double slip_velocity, double spring,
+                        double dt) const {
     ContactForce f;
     const double sqrt_d = std::sqrt(depth);
     const double damp_factor = s_.damping == DampingModel::paper ? sqrt_d : std::sqrt(sqrt_d);

@@ -109,11 +109,10 @@ void split(const Piece& in, const Vec2& w, double c, Piece& lo, Piece& hi) {
   }
 }
 
-
 // The part of I and of its gradient that comes from one body's distance field: d_X over P, and its line load on
 // the part of ∂P that lies on the other body's boundary (sign -1 for X = A, +1 for X = B).
-void body_field(std::span<const Vec2> x, bool x_is_a, int na, const Vec2& origin, const Vec2* p, const int* edge,
-                int n, const Vec2& g, FoundationTerms& out) {
+void body_field(std::span<const Vec2> x, bool x_is_a, int na, const Vec2& origin, const Vec2* p, const int* edge, int n,
+                const Vec2& g, FoundationTerms& out) {
   const int nx = static_cast<int>(x.size());
   // X's edge i relative to the origin: start s and direction e (A's edge i: a[i] -> a[i+1]; B's edge j:
   // b[j-1] -> b[j]); the distance inside its line is cross(e, x - s) / |e|.
@@ -199,8 +198,8 @@ void body_field(std::span<const Vec2> x, bool x_is_a, int na, const Vec2& origin
 
 }  // namespace
 
-FoundationTerms foundation_terms(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin,
-                                 const Vec2* p, const int* edge, int n, const Vec2& g) {
+FoundationTerms foundation_terms(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const Vec2* p,
+                                 const int* edge, int n, const Vec2& g) {
   FoundationTerms t;
   const int na = static_cast<int>(a.size());
   body_field(a, true, na, origin, p, edge, n, g, t);

@@ -37,7 +37,7 @@ struct FoundationTerms {
 // `p[0..n)`: the overlap polygon relative to `origin`, counter-clockwise; `edge[k]` says which edge the polygon's
 // edge p[k] -> p[k+1] lies on: A's edge edge[k] (a[i] -> a[i+1]) when < na, else B's edge edge[k] - na
 // (b[j-1] -> b[j]). `g`: the point moments are taken about, relative to `origin`.
-FoundationTerms foundation_terms(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin,
-                                 const Vec2* p, const int* edge, int n, const Vec2& g);
+FoundationTerms foundation_terms(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const Vec2* p,
+                                 const int* edge, int n, const Vec2& g);
 
 }  // namespace polyfloe::contact::detail

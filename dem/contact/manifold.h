@@ -25,8 +25,8 @@ inline constexpr double kMaxFaceAngle = 0.1745329251994330;  // 10 degrees [rad]
 
 struct ContactManifold {
   int count = 0;
-  Vec3 normal{0.0, 0.0, 1.0};              // unit, from A to B: the reference face's normal (sign for A -> B)
-  std::array<Vec3, kMaxManifoldPoints> points{};  // midway between the reference plane and the incident point [m]
+  Vec3 normal{0.0, 0.0, 1.0};                       // unit, from A to B: the reference face's normal (sign for A -> B)
+  std::array<Vec3, kMaxManifoldPoints> points{};    // midway between the reference plane and the incident point [m]
   std::array<double, kMaxManifoldPoints> depths{};  // below the reference plane, > 0 [m]
   double max_depth() const;
   // The depth-weighted centre of the points: where one equivalent normal force acts (no torque from a face lying

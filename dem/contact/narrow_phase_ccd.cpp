@@ -51,9 +51,9 @@ struct Body {
   Vec3 skew;                // tie-break direction (tiebreak only)
   bool tiebreak;
   int max_calls;
-  Vec3 centre;              // vertex mean, normalised (MPR's interior point)
-  mutable int calls = 0;    // support evaluations so far (frozen ones included)
-  mutable Vec3 last;        // last returned support vertex, normalised; vertex 0 before the first call
+  Vec3 centre;            // vertex mean, normalised (MPR's interior point)
+  mutable int calls = 0;  // support evaluations so far (frozen ones included)
+  mutable Vec3 last;      // last returned support vertex, normalised; vertex 0 before the first call
 
   Vec3 local(std::size_t i) const { return (v[i] - origin) * inv_scale; }
   bool frozen() const { return calls > max_calls; }
@@ -146,10 +146,26 @@ CcdContact ccd_penetration(std::span<const Vec3> a, std::span<const Vec3> b, Ccd
   const double inv_scale = 1.0 / scale;
 
   const bool tiebreak = method == CcdMethod::gjk_epa_tiebreak;
-  const Body body_a{a, origin, scale, inv_scale, kSkew, tiebreak, settings.max_support_calls,
-                    vertex_mean(a, origin, inv_scale), 0, (a[0] - origin) * inv_scale};
-  const Body body_b{b, origin, scale, inv_scale, -kSkew, tiebreak, settings.max_support_calls,
-                    vertex_mean(b, origin, inv_scale), 0, (b[0] - origin) * inv_scale};
+  const Body body_a{a,
+                    origin,
+                    scale,
+                    inv_scale,
+                    kSkew,
+                    tiebreak,
+                    settings.max_support_calls,
+                    vertex_mean(a, origin, inv_scale),
+                    0,
+                    (a[0] - origin) * inv_scale};
+  const Body body_b{b,
+                    origin,
+                    scale,
+                    inv_scale,
+                    -kSkew,
+                    tiebreak,
+                    settings.max_support_calls,
+                    vertex_mean(b, origin, inv_scale),
+                    0,
+                    (b[0] - origin) * inv_scale};
 
   ccd_t ccd;
   CCD_INIT(&ccd);
@@ -160,8 +176,8 @@ CcdContact ccd_penetration(std::span<const Vec3> a, std::span<const Vec3> b, Ccd
   ccd.center2 = centre;
   ccd.max_iterations = settings.max_iterations;
   ccd.epa_tolerance = settings.epa_tolerance * settings.epa_tolerance;  // EPA compares squared lengths
-  ccd.mpr_tolerance = settings.mpr_tolerance;                          // MPR compares lengths
-  ccd.dist_tolerance = settings.epa_tolerance;                         // unused by the penetration queries
+  ccd.mpr_tolerance = settings.mpr_tolerance;                           // MPR compares lengths
+  ccd.dist_tolerance = settings.epa_tolerance;                          // unused by the penetration queries
 
   // NaN until libccd writes them: an output it leaves unset fails the checks below.
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();

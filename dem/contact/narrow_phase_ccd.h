@@ -68,11 +68,11 @@ enum class CcdStatus {
 
 struct CcdContact {
   CcdStatus status = CcdStatus::separated;
-  double depth = 0.0;             // penetration depth [m]
-  Vec3 normal{0.0, 0.0, 1.0};     // unit, from A to B (moving B by depth x normal separates them)
-  Vec3 point{0.0, 0.0, 0.0};      // libccd's contact point [m]
-  const char* reason = "";        // why it failed (static string)
-  int support_calls = 0;          // support evaluations used [-]
+  double depth = 0.0;          // penetration depth [m]
+  Vec3 normal{0.0, 0.0, 1.0};  // unit, from A to B (moving B by depth x normal separates them)
+  Vec3 point{0.0, 0.0, 0.0};   // libccd's contact point [m]
+  const char* reason = "";     // why it failed (static string)
+  int support_calls = 0;       // support evaluations used [-]
 };
 
 // `a`, `b`: world-frame vertices of two convex polyhedra (the convex hull of each set is the body).

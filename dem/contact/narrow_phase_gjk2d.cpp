@@ -29,7 +29,7 @@ constexpr int kMaxEpaVertices = 256;
 static_assert(kMaxEpaVertices >= 2 * kMaxPolygonVertices + 3);
 
 struct Support {
-  Vec2 w;     // a[i] - b[j] [m]
+  Vec2 w;  // a[i] - b[j] [m]
   int i, j;
 };
 
@@ -110,7 +110,7 @@ Gjk2dContact gjk_epa_2d(std::span<const Vec2> a, std::span<const Vec2> b, const 
   }
   if (!finite) return fail(r, "non-finite vertex");
   const Vec2 lo = lo_a.cwiseMin(lo_b), hi = hi_a.cwiseMax(hi_b);
-  const double size = (hi - lo).maxCoeff();                                     // [m]
+  const double size = (hi - lo).maxCoeff();                                               // [m]
   const double magnitude = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());  // [m]
   // Products of two coordinates (dots, crosses, squared lengths) must not overflow.
   if (!(size > 0.0) || !(magnitude < 1e100)) return fail(r, "zero extent or coordinates beyond 1e100 m");
@@ -234,8 +234,8 @@ Gjk2dContact gjk_epa_2d(std::span<const Vec2> a, std::span<const Vec2> b, const 
     const Support w = support(a, b, nrm);
     ++epa_it;
     const int next = best + 1 == poly.n ? 0 : best + 1;
-    const bool repeat = (w.i == poly.v[best].i && w.j == poly.v[best].j) ||
-                        (w.i == poly.v[next].i && w.j == poly.v[next].j);
+    const bool repeat =
+        (w.i == poly.v[best].i && w.j == poly.v[best].j) || (w.i == poly.v[next].i && w.j == poly.v[next].j);
     // The true depth lies in [dist, w·n]: P ⊂ D, and D's support along n bounds the distance to ∂D.
     if (repeat || !(w.w.dot(nrm) - poly.dist[best] > extend_tol)) break;
     if (poly.n == kMaxEpaVertices) {
@@ -269,7 +269,7 @@ Gjk2dContact gjk_epa_2d(std::span<const Vec2> a, std::span<const Vec2> b, const 
   // from the EPA edge's barycentric weight could land anywhere along it).
   const Vec2 nrm = poly.normal[best], tan = perp_left(nrm);
   const Vec2 o = a[0];  // coordinates relative to a point of the pair: precision far from the origin
-  const double feature_tol = extend_tol + touch;  // [m]
+  const double feature_tol = extend_tol + touch;                    // [m]
   double proj_a[kMaxPolygonVertices], proj_b[kMaxPolygonVertices];  // along nrm, relative to o [m]
   double ha = -std::numeric_limits<double>::infinity(), lb = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < a.size(); ++k) ha = std::max(ha, proj_a[k] = nrm.dot(a[k] - o));
@@ -293,8 +293,7 @@ Gjk2dContact gjk_epa_2d(std::span<const Vec2> a, std::span<const Vec2> b, const 
   r.depth = depth;
   r.normal = nrm;
   r.point = o + t_mid * tan + (0.5 * (ha + lb)) * nrm;
-  if (!std::isfinite(r.depth) || !r.normal.allFinite() || !r.point.allFinite())
-    return fail(r, "non-finite contact");
+  if (!std::isfinite(r.depth) || !r.normal.allFinite() || !r.point.allFinite()) return fail(r, "non-finite contact");
   return r;
 }
 

@@ -34,11 +34,11 @@ enum class Gjk2dStatus { separated, contact, failed };
 
 struct Gjk2dContact {
   Gjk2dStatus status = Gjk2dStatus::separated;
-  double depth = 0.0;          // [m]
-  Vec2 normal{1.0, 0.0};       // unit, from A to B
-  Vec2 point{0.0, 0.0};        // [m]
-  int iterations = 0;          // GJK + EPA iterations used [-]
-  const char* reason = "";     // why it failed (static string)
+  double depth = 0.0;       // [m]
+  Vec2 normal{1.0, 0.0};    // unit, from A to B
+  Vec2 point{0.0, 0.0};     // [m]
+  int iterations = 0;       // GJK + EPA iterations used [-]
+  const char* reason = "";  // why it failed (static string)
 };
 
 // `a`, `b`: world-frame vertices, counter-clockwise, convex. Touching (zero depth) counts as separated.

@@ -70,8 +70,7 @@ struct Crossing {
   Vec2 x;
   double t = 0.0;
 };
-bool cross_edge(std::span<const Vec2> a, const Vec2& origin, int i, const Vec2& nrm, double d, bool exit,
-                Crossing& c) {
+bool cross_edge(std::span<const Vec2> a, const Vec2& origin, int i, const Vec2& nrm, double d, bool exit, Crossing& c) {
   const int na = static_cast<int>(a.size());
   const Vec2 p0 = a[i] - origin, p1 = a[(i + 1 == na) ? 0 : i + 1] - origin;
   const double s0 = nrm.dot(p0) - d, s1 = nrm.dot(p1) - d;
@@ -107,8 +106,8 @@ int chain_b(const OverlapTopology& t, int nb) { return t.b_last - t.b_first + (t
 // is this pair's topology with room to spare; else false. The checks are the steps of the proof in docs/model.md:
 // both crossings inside both their edges, in the right sense, in the right order where they share an edge, and
 // both chains strictly inside the other polygon.
-bool build_from_topology(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin,
-                         const OverlapTopology& t, ClipPolygon& out) {
+bool build_from_topology(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const OverlapTopology& t,
+                         ClipPolygon& out) {
   const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
   if (t.a_first < 0 || t.a_last < 0 || t.b_first < 0 || t.b_last < 0 || t.a_first >= na || t.a_last >= na ||
       t.b_first >= nb || t.b_last >= nb)
@@ -227,8 +226,8 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     int apart = -1;
     poly = clip(a, b, origin, buf, apart);
     if (topology) {
-      *topology = poly ? read_topology(*poly, static_cast<int>(a.size()), static_cast<int>(b.size()))
-                       : OverlapTopology{};
+      *topology =
+          poly ? read_topology(*poly, static_cast<int>(a.size()), static_cast<int>(b.size())) : OverlapTopology{};
       // Apart: the edge of B that showed it before any cut; else (the vertex means' line showed it, or the clipping
       // after cuts) the edge of either polygon with the largest separation, found once for the steps to come.
       if (apart >= 0)
@@ -307,10 +306,13 @@ const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const 
     bool any_out = false, any_in = false;
     for (int k = 0; k < cur->n; ++k) {
       s[k] = nrm.dot(cur->p[k]) - d;
-      if (s[k] > 0.0) any_out = true; else any_in = true;
+      if (s[k] > 0.0)
+        any_out = true;
+      else
+        any_in = true;
     }
-    if (!any_out) continue;      // this edge of B does not cut the polygon
-    if (!any_in) {  // the polygon lies wholly outside: separated (or touching)
+    if (!any_out) continue;    // this edge of B does not cut the polygon
+    if (!any_in) {             // the polygon lies wholly outside: separated (or touching)
       apart = whole ? j : -2;  // not cut yet: all of A lies outside this line; else it took several lines
       return nullptr;
     }

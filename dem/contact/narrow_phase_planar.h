@@ -41,11 +41,11 @@ struct PlanarContact {
   double area = 0.0;      // overlap area [m^2]
   double chord = 0.0;     // chord length |N| [m]; 0 in the containment fallback
   // Gradient terms (see above), all about the centroid `point`:
-  double moment = 0.0;    // M: sum over ∂A edges of cross(midpoint - point, edge normal x length) [m^2]
-  Vec2 ga{0.0, 0.0};      // d|N|/dv_A [-]
-  Vec2 gb{0.0, 0.0};      // d|N|/dv_B [-]
-  double ha = 0.0;        // d|N|/dw_A about the centroid [m]
-  double hb = 0.0;        // d|N|/dw_B about the centroid [m]
+  double moment = 0.0;  // M: sum over ∂A edges of cross(midpoint - point, edge normal x length) [m^2]
+  Vec2 ga{0.0, 0.0};    // d|N|/dv_A [-]
+  Vec2 gb{0.0, 0.0};    // d|N|/dv_B [-]
+  double ha = 0.0;      // d|N|/dw_A about the centroid [m]
+  double hb = 0.0;      // d|N|/dw_B about the centroid [m]
   // Elastic-foundation terms (OverlapTerms::foundation; contact/foundation.h), per unit foundation modulus
   // (laid out without padding: tests compare contacts bit for bit):
   Vec2 load{0.0, 0.0};       // -dI/dx_B: the force on B [m^2] (on A: its opposite)
@@ -69,7 +69,7 @@ enum class OverlapTerms {
 // In the containment fallback (chord = 0) it is the plain normal at the centroid.
 struct DepthGradient {
   Vec2 grad_a{0.0, 0.0}, grad_b{0.0, 0.0};  // [-]
-  double grad_wa = 0.0, grad_wb = 0.0;       // [m]
+  double grad_wa = 0.0, grad_wb = 0.0;      // [m]
 };
 // `c` must come from planar_overlap(..., with_gradient = true).
 DepthGradient depth_gradient(const PlanarContact& c, const Vec2& x_a, const Vec2& x_b);
@@ -110,7 +110,8 @@ static_assert(kMaxPolygonVertices <= 127, "OverlapTopology holds edge indices in
 // topology by the same arithmetic, so the result does not depend on what was passed in (bit for bit: restarts and
 // thread counts see the same contacts whatever the callers kept). Likewise a pair found apart keeps an edge of
 // either polygon that shows it (a_apart, b_apart): the next call first tests whether the other polygon still lies
-// wholly outside that edge's line, by a margin, and returns false at once (the clipping would reject it too). On return: the topology of this overlap, or unknown
+// wholly outside that edge's line, by a margin, and returns false at once (the clipping would reject it too). On
+// return: the topology of this overlap, or unknown
 // (no contact, with the separating edge where one was seen, or another shape).
 bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out, OverlapTerms terms,
                     OverlapTopology* topology = nullptr);

@@ -27,7 +27,7 @@ struct SatContact {
   Vec3 normal{0.0, 0.0, 1.0};  // unit, from A to B
   Vec3 point{0.0, 0.0, 0.0};   // witness point [m]
   SatFeature feature = SatFeature::face_a;
-  int axes = 0;                // candidate axes tested [-]
+  int axes = 0;  // candidate axes tested [-]
 };
 
 // `rot_*`: body-to-world rotations; `world_*`: world-frame vertices in the shapes' order; `centre_*`: centroids.

@@ -25,15 +25,15 @@ std::string_view to_string(Motion m);
 struct BodyDesc {
   BodyId id = 0;
   std::shared_ptr<const geometry::ConvexPolygon> shape;  // body frame, centroid at origin
-  Vec2 position{0.0, 0.0};       // centroid [m]
-  double yaw = 0.0;              // rotation of the body frame [rad]
-  Vec2 velocity{0.0, 0.0};       // [m/s]
-  double angular_velocity = 0.0; // [rad/s], counter-clockwise positive
-  double thickness = 1.0;        // [m]
-  double density = 920.0;        // [kg/m^3]
+  Vec2 position{0.0, 0.0};                               // centroid [m]
+  double yaw = 0.0;                                      // rotation of the body frame [rad]
+  Vec2 velocity{0.0, 0.0};                               // [m/s]
+  double angular_velocity = 0.0;                         // [rad/s], counter-clockwise positive
+  double thickness = 1.0;                                // [m]
+  double density = 920.0;                                // [kg/m^3]
   Motion motion = Motion::dynamic;
-  Vec2 external_force{0.0, 0.0}; // constant applied force at the centroid [N]
-  double external_torque = 0.0;  // constant applied torque about z [N m]
+  Vec2 external_force{0.0, 0.0};  // constant applied force at the centroid [N]
+  double external_torque = 0.0;   // constant applied torque about z [N m]
 };
 
 }  // namespace polyfloe::dynamics

@@ -48,7 +48,8 @@ void World::drift_forces(double t) {
   const bool semi_implicit = s.treatment == forcing::DriftTreatment::semi_implicit;
 
   // Scratch per thread (each body's samples are independent of every other's).
-  if (drift_scratch_.size() < static_cast<std::size_t>(threads_)) drift_scratch_.resize(static_cast<std::size_t>(threads_));
+  if (drift_scratch_.size() < static_cast<std::size_t>(threads_))
+    drift_scratch_.resize(static_cast<std::size_t>(threads_));
   for (DriftScratch& d : drift_scratch_) {
     d.error_body = -1;
     if (d.quad_rx.size() < max_quad_points_) {
@@ -133,7 +134,8 @@ void World::drift_forces(double t) {
             scratch.quad_fx[q] = u[q].x();
             scratch.quad_fy[q] = u[q].y();
           }
-          forcing::add_surface_drag(load, coefficient, rho, m, samples, {scratch.quad_fx.data(), nq}, {scratch.quad_fy.data(), nq});
+          forcing::add_surface_drag(load, coefficient, rho, m, samples, {scratch.quad_fx.data(), nq},
+                                    {scratch.quad_fy.data(), nq});
         };
         if (s.skin_drag) surface(ocean, -draft_[i], s.skin_drag_coefficient, s.water_density);
         if (s.air_drag) surface(wind, thickness_[i] - draft_[i], s.air_drag_coefficient, s.air_density);

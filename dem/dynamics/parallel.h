@@ -10,7 +10,8 @@
 // same way, so a thread mostly reads what it wrote in the loop before: at a thousand floes a loop lasts a few
 // microseconds, and data fetched from the other core's cache, or chunks handed out one at a time, cost as much
 // again (docs/performance.md, "Two threads at a thousand floes").
-#define POLYFLOE_OMP_FOR(threads) POLYFLOE_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (threads > 1))
+#define POLYFLOE_OMP_FOR(threads) \
+  POLYFLOE_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (threads > 1))
 // The same, each thread or-ing into its own copies of the bools named after `threads`, or-ed together at the end.
 #define POLYFLOE_OMP_FOR_ANY(threads, ...) \
   POLYFLOE_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (threads > 1) reduction(|| : __VA_ARGS__))

@@ -40,9 +40,10 @@ int SpatialWorld::add_body(const SpatialBodyDesc& d) {
   if (!(d.density > 0.0) || !std::isfinite(d.density)) {
     throw std::invalid_argument("spatial body " + std::to_string(d.id) + ": density must be finite and > 0 kg/m^3");
   }
-  if (!finite(d.position) || !finite(d.velocity) || !finite(d.angular_velocity) || !d.orientation.coeffs().allFinite() ||
-      !(d.orientation.norm() > 0.0)) {
-    throw std::invalid_argument("spatial body " + std::to_string(d.id) + ": non-finite position, orientation or velocity");
+  if (!finite(d.position) || !finite(d.velocity) || !finite(d.angular_velocity) ||
+      !d.orientation.coeffs().allFinite() || !(d.orientation.norm() > 0.0)) {
+    throw std::invalid_argument("spatial body " + std::to_string(d.id) +
+                                ": non-finite position, orientation or velocity");
   }
   const int i = static_cast<int>(id_.size());
   id_.push_back(d.id);
@@ -153,8 +154,7 @@ void SpatialWorld::compute_forces(double dt) {
     if (!is_dynamic_[i]) continue;
     force_[i] += mass_[i] * settings_.gravity;
     if (settings_.buoyancy) {
-      const auto sub = geometry::submerged_part(*shape_[i], world_vertices(static_cast<int>(i)),
-                                                settings_.water_level);
+      const auto sub = geometry::submerged_part(*shape_[i], world_vertices(static_cast<int>(i)), settings_.water_level);
       if (sub.volume > 0.0) {
         const Vec3 fb = -settings_.water_density * sub.volume * settings_.gravity;
         force_[i] += fb;
@@ -179,9 +179,10 @@ void SpatialWorld::compute_forces(double dt) {
     if (settings_.narrow_phase == SpatialNarrowPhase::sat) {
       c = exact();
     } else {
-      const auto method = settings_.narrow_phase == SpatialNarrowPhase::mpr       ? contact::CcdMethod::mpr
-                          : settings_.narrow_phase == SpatialNarrowPhase::gjk_epa ? contact::CcdMethod::gjk_epa
-                                                                                  : contact::CcdMethod::gjk_epa_tiebreak;
+      const auto method = settings_.narrow_phase == SpatialNarrowPhase::mpr ? contact::CcdMethod::mpr
+                          : settings_.narrow_phase == SpatialNarrowPhase::gjk_epa
+                              ? contact::CcdMethod::gjk_epa
+                              : contact::CcdMethod::gjk_epa_tiebreak;
       const auto r = contact::ccd_penetration(world_vertices(a), world_vertices(b), method, settings_.ccd);
       if (r.status == contact::CcdStatus::failed) {
         ++stats_.primary_failures;
@@ -193,7 +194,7 @@ void SpatialWorld::compute_forces(double dt) {
         if (c.hit) ++stats_.primary_failures;
       } else if (r.depth > contact::least_face_overlap(*shape_[a], rot_a, world_vertices(a), *shape_[b], rot_b,
                                                        world_vertices(b)) +
-                                 1e-9 * (shape_[a]->circumradius() + shape_[b]->circumradius())) {
+                               1e-9 * (shape_[a]->circumradius() + shape_[b]->circumradius())) {
         // Deeper than a face axis allows: not the minimum translation (MPR's portal depth, up to 81 % too deep on
         // vertex-into-vertex floes in the failure map; for prisms the face axes are every Minkowski face, so the
         // check is exact for floes): sat answers.
@@ -218,8 +219,7 @@ void SpatialWorld::compute_forces(double dt) {
     contact::ContactManifold m;
     // sat: only for face contacts (an edge-edge contact is one point, whatever faces lie near its normal)
     if (settings_.contact_point == ContactPointModel::manifold && c.feature != contact::SatFeature::edge_edge) {
-      m = contact::clip_manifold(*shape_[a], rot_a, world_vertices(a), *shape_[b], rot_b, world_vertices(b),
-                                 c.normal);
+      m = contact::clip_manifold(*shape_[a], rot_a, world_vertices(a), *shape_[b], rot_b, world_vertices(b), c.normal);
     }
     if (m.count > 0) {
       k.normal = m.normal;
@@ -355,9 +355,8 @@ double SpatialWorld::shortest_contact_duration(double speed) const {
     if (!is_dynamic_[i]) continue;
     // The least effective mass of an impact on this body: 1 / (1/m + |r x n|^2 / I) with |r x n| at most the
     // circumradius and I at least the smallest principal moment.
-    const double i_min = Eigen::SelfAdjointEigenSolver<Mat3>(inertia_body_[i], Eigen::EigenvaluesOnly)
-                             .eigenvalues()
-                             .minCoeff();
+    const double i_min =
+        Eigen::SelfAdjointEigenSolver<Mat3>(inertia_body_[i], Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
     const double rc = shape_[i]->circumradius();
     const double m = 1.0 / (1.0 / mass_[i] + rc * rc / i_min);
     // like against like (m* = m/2, R* = r/2) and against a fixed flat body (m* = m, R* = r); a face on a face has

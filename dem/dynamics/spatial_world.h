@@ -61,32 +61,32 @@ struct SpatialSettings {
   SpatialNarrowPhase narrow_phase = SpatialNarrowPhase::sat;  // a libccd query that fails falls back to sat
   contact::CcdSettings ccd;
   ContactPointModel contact_point = ContactPointModel::witness;
-  Vec3 gravity{0.0, 0.0, 0.0};   // [m/s^2]; e.g. (0, 0, -9.81)
-  bool buoyancy = false;         // Archimedes' force at the centre of the submerged volume below z = water_level
-  double water_density = 1025.0; // [kg/m^3]
-  double water_level = 0.0;      // [m]
+  Vec3 gravity{0.0, 0.0, 0.0};    // [m/s^2]; e.g. (0, 0, -9.81)
+  bool buoyancy = false;          // Archimedes' force at the centre of the submerged volume below z = water_level
+  double water_density = 1025.0;  // [kg/m^3]
+  double water_level = 0.0;       // [m]
 };
 
 struct SpatialBodyDesc {
   BodyId id = 0;
   std::shared_ptr<const geometry::ConvexPolyhedron> shape;  // body frame, centroid at the origin
-  double density = 920.0;                  // [kg/m^3]
-  Vec3 position{0.0, 0.0, 0.0};            // centroid [m]
-  Quat orientation = Quat::Identity();     // body to world
-  Vec3 velocity{0.0, 0.0, 0.0};            // [m/s]
-  Vec3 angular_velocity{0.0, 0.0, 0.0};    // world frame [rad/s]
+  double density = 920.0;                                   // [kg/m^3]
+  Vec3 position{0.0, 0.0, 0.0};                             // centroid [m]
+  Quat orientation = Quat::Identity();                      // body to world
+  Vec3 velocity{0.0, 0.0, 0.0};                             // [m/s]
+  Vec3 angular_velocity{0.0, 0.0, 0.0};                     // world frame [rad/s]
   Motion motion = Motion::dynamic;
 };
 
 struct SpatialContact {
-  int a = 0, b = 0;               // body indices, id(a) < id(b); the normal points from a to b
+  int a = 0, b = 0;  // body indices, id(a) < id(b); the normal points from a to b
   Vec3 normal{0.0, 0.0, 1.0};
-  Vec3 point{0.0, 0.0, 0.0};      // where the force acts [m]
-  double depth = 0.0;             // [m]
-  int manifold_points = 0;        // 0 = the narrow phase's single point
-  double normal_force = 0.0;      // [N]
-  Vec3 force{0.0, 0.0, 0.0};      // total contact force on b [N]
-  double stored_energy = 0.0;     // 2/5 k_n d^2.5 [J]
+  Vec3 point{0.0, 0.0, 0.0};   // where the force acts [m]
+  double depth = 0.0;          // [m]
+  int manifold_points = 0;     // 0 = the narrow phase's single point
+  double normal_force = 0.0;   // [N]
+  Vec3 force{0.0, 0.0, 0.0};   // total contact force on b [N]
+  double stored_energy = 0.0;  // 2/5 k_n d^2.5 [J]
   // Hertz duration of this impact at the speed it implies (approach rate and stored energy,
   // v^2 = d_dot^2 + (4/5) k d^2.5 / m*, k = points x k_n): a step that does not resolve it is unstable [s].
   double duration = 0.0;
@@ -117,14 +117,14 @@ class SpatialWorld {
   BodyId id(int i) const { return id_[i]; }
   const geometry::ConvexPolyhedron& shape(int i) const { return *shape_[i]; }
   Motion motion(int i) const { return motion_[i]; }
-  double mass(int i) const { return mass_[i]; }                          // [kg]
-  const Mat3& body_inertia(int i) const { return inertia_body_[i]; }     // [kg m^2], body frame
-  const Vec3& position(int i) const { return pos_[i]; }                  // [m]
+  double mass(int i) const { return mass_[i]; }                       // [kg]
+  const Mat3& body_inertia(int i) const { return inertia_body_[i]; }  // [kg m^2], body frame
+  const Vec3& position(int i) const { return pos_[i]; }               // [m]
   const Quat& orientation(int i) const { return q_[i]; }
-  const Vec3& velocity(int i) const { return vel_[i]; }                  // [m/s]
-  Vec3 angular_velocity(int i) const;                                    // world frame [rad/s]
-  const Vec3& force(int i) const { return force_[i]; }                   // [N]
-  const Vec3& torque(int i) const { return torque_[i]; }                 // [N m]
+  const Vec3& velocity(int i) const { return vel_[i]; }   // [m/s]
+  Vec3 angular_velocity(int i) const;                     // world frame [rad/s]
+  const Vec3& force(int i) const { return force_[i]; }    // [N]
+  const Vec3& torque(int i) const { return torque_[i]; }  // [N m]
   std::span<const Vec3> world_vertices(int i) const {
     return {world_.data() + vert_off_[i], static_cast<std::size_t>(vert_off_[i + 1] - vert_off_[i])};
   }
@@ -132,10 +132,10 @@ class SpatialWorld {
   const NarrowPhaseStats& narrow_phase_stats() const { return stats_; }
 
   // --- diagnostics (dynamic bodies) ---
-  double kinetic_energy() const;       // translation + rotation [J]
-  double contact_energy() const;       // elastic energy stored in the active contacts [J]
-  Vec3 linear_momentum() const;        // [kg m/s]
-  Vec3 angular_momentum() const;       // about the origin [kg m^2/s]
+  double kinetic_energy() const;  // translation + rotation [J]
+  double contact_energy() const;  // elastic energy stored in the active contacts [J]
+  Vec3 linear_momentum() const;   // [kg m/s]
+  Vec3 angular_momentum() const;  // about the origin [kg m^2/s]
   // Shortest undamped Hertz impact among the bodies present at `speed` [m/s]: each dynamic body striking its like
   // and a fixed body, at its least effective mass (a corner impact: 1 / (1/m + r_c^2 / I_min)) and with a full
   // manifold's stiffness (kMaxManifoldPoints x k_n) [s].

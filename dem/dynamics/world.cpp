@@ -23,9 +23,11 @@ World::World(const WorldSettings& settings)
     throw std::invalid_argument("DriftSettings::update_every = " + std::to_string(d.update_every) +
                                 " needs the semi-implicit treatment (the linear model between full evaluations "
                                 "is its damping matrix); use 1 with the explicit one");
-  if (settings.contact.force_model == contact::ForceModel::foundation && settings.narrow_phase == PlanarNarrowPhase::gjk_epa)
-    throw std::invalid_argument("the foundation force model needs the exact narrow phase (it integrates over the "
-                                "overlap polygon)");
+  if (settings.contact.force_model == contact::ForceModel::foundation &&
+      settings.narrow_phase == PlanarNarrowPhase::gjk_epa)
+    throw std::invalid_argument(
+        "the foundation force model needs the exact narrow phase (it integrates over the "
+        "overlap polygon)");
 }
 
 int World::add_body(const BodyDesc& d) {
@@ -95,7 +97,8 @@ int World::add_body(const BodyDesc& d) {
     order_cell_ = geometry::space_order_cell(radius_sum_ / dynamic_count_);
   }
   skin_ = settings_.broad_phase_skin > 0.0 ? settings_.broad_phase_skin
-                                           : dynamic_count_ > 0 ? 0.2 * radius_sum_ / dynamic_count_ : 1.0;
+          : dynamic_count_ > 0             ? 0.2 * radius_sum_ / dynamic_count_
+                                           : 1.0;
   reach_.push_back(d.shape->circumradius());
   skin_pos_.clear();  // rebuilt at the next evaluation
   kick_outrun_.reset();
@@ -110,7 +113,12 @@ int World::add_body(const BodyDesc& d) {
 }
 
 World::SlotStatic World::slot_static_of(int i, int vert_begin) const {
-  return {is_dynamic_[i] ? mass_[i] : contact::kInfinite, radius_[i], equivalent_radius_[i], id_[i], i, vert_begin,
+  return {is_dynamic_[i] ? mass_[i] : contact::kInfinite,
+          radius_[i],
+          equivalent_radius_[i],
+          id_[i],
+          i,
+          vert_begin,
           vert_off_[i + 1] - vert_off_[i]};
 }
 
@@ -331,8 +339,7 @@ WorldState World::state() const {
 void World::restore(const WorldState& s) {
   const std::size_t n = size();
   auto bad = [](const std::string& what) { throw std::invalid_argument("world state: " + what); };
-  if (s.ids.size() != n)
-    bad("it has " + std::to_string(s.ids.size()) + " bodies, this world has " + std::to_string(n));
+  if (s.ids.size() != n) bad("it has " + std::to_string(s.ids.size()) + " bodies, this world has " + std::to_string(n));
   for (std::size_t i = 0; i < n; ++i)
     if (s.ids[i] != id_[i])
       bad("body " + std::to_string(i) + " has id " + std::to_string(s.ids[i]) + ", this world's has id " +

@@ -59,14 +59,14 @@ struct ContactGeometry {
 
 // One active contact of the last step (for output and diagnostics).
 struct ContactRecord {
-  int a = 0, b = 0;            // body indices, ordered so that id(a) < id(b); the normal points from a to b
+  int a = 0, b = 0;  // body indices, ordered so that id(a) < id(b); the normal points from a to b
   ContactGeometry geometry;
-  double normal_force = 0.0;   // [N], on b along +normal
+  double normal_force = 0.0;      // [N], on b along +normal
   double tangential_force = 0.0;  // [N], on b along k x normal
   bool sliding = false;
-  Vec2 force{0.0, 0.0};        // total contact force on b [N] (force_model gradient: the normal part follows
-                               // the depth gradient, close to but not exactly along the normal)
-  double energy = 0.0;         // elastic energy stored in the contact [J] (2/5 k_n d^2.5; foundation: kappa I)
+  Vec2 force{0.0, 0.0};  // total contact force on b [N] (force_model gradient: the normal part follows
+                         // the depth gradient, close to but not exactly along the normal)
+  double energy = 0.0;   // elastic energy stored in the contact [J] (2/5 k_n d^2.5; foundation: kappa I)
   Vec2 force_on_b() const { return force; }
 };
 
@@ -84,12 +84,12 @@ struct StepProfile {
 // so that a restarted run continues bitwise as the uninterrupted one would. Shapes, masses, quadrature points,
 // bond geometry and world-frame vertices are rebuilt from the scene and the poses.
 struct WorldState {
-  double time = 0.0;                  // [s]
+  double time = 0.0;  // [s]
   std::uint64_t steps = 0;
-  bool forces_ready = false;          // forces below belong to this state
-  std::vector<BodyId> ids;            // [N], the order of every array below
+  bool forces_ready = false;                                    // forces below belong to this state
+  std::vector<BodyId> ids;                                      // [N], the order of every array below
   std::vector<Vec2> position, velocity, force, external_force;  // [N] [m, m/s, N, N]
-  std::vector<double> yaw, omega, torque, external_torque;     // [N] [rad, rad/s, N m, N m]
+  std::vector<double> yaw, omega, torque, external_torque;      // [N] [rad, rad/s, N m, N m]
   // The drift load of the last evaluation with its damping matrix, and its linear model's load at v = 0 (empty
   // or [N]): the next step's velocity prediction reads them.
   std::vector<forcing::DriftLoad> drift_load;
@@ -118,17 +118,20 @@ class World {
   void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
   int threads() const { return threads_; }
 
-  double time() const { return time_; }            // [s]
+  double time() const { return time_; }  // [s]
   std::uint64_t step_count() const { return steps_; }
-  void set_time(double t, std::uint64_t steps) { time_ = t; steps_ = steps; }
+  void set_time(double t, std::uint64_t steps) {
+    time_ = t;
+    steps_ = steps;
+  }
 
   // --- state (indices 0..size()-1) ---
-  std::span<const Vec2> positions() const { return pos_; }          // [m]
-  std::span<const double> yaws() const { return yaw_; }             // [rad]
-  std::span<const Vec2> velocities() const { return vel_; }         // [m/s]
+  std::span<const Vec2> positions() const { return pos_; }               // [m]
+  std::span<const double> yaws() const { return yaw_; }                  // [rad]
+  std::span<const Vec2> velocities() const { return vel_; }              // [m/s]
   std::span<const double> angular_velocities() const { return omega_; }  // [rad/s]
-  std::span<const Vec2> forces() const { return force_; }           // total force of the last evaluation [N]
-  std::span<const double> torques() const { return torque_; }       // [N m]
+  std::span<const Vec2> forces() const { return force_; }                // total force of the last evaluation [N]
+  std::span<const double> torques() const { return torque_; }            // [N m]
   void set_velocity(int i, const Vec2& v, double omega);
   void set_external_load(int i, const Vec2& force, double torque);
 
@@ -136,10 +139,10 @@ class World {
   BodyId id(int i) const { return id_[i]; }
   int index_of(BodyId id) const;  // -1 if absent
   const geometry::ConvexPolygon& shape(int i) const { return *shape_[i]; }
-  double thickness(int i) const { return thickness_[i]; }   // [m]
-  double draft(int i) const { return draft_[i]; }           // floating draft h rho_ice / rho_w, at most h [m]
-  double mass(int i) const { return mass_[i]; }             // [kg] (of the prism, also for walls)
-  double inertia(int i) const { return inertia_[i]; }       // [kg m^2]
+  double thickness(int i) const { return thickness_[i]; }  // [m]
+  double draft(int i) const { return draft_[i]; }          // floating draft h rho_ice / rho_w, at most h [m]
+  double mass(int i) const { return mass_[i]; }            // [kg] (of the prism, also for walls)
+  double inertia(int i) const { return inertia_[i]; }      // [kg m^2]
   Motion motion(int i) const { return motion_[i]; }
   // World-frame vertices of body i as of the last step (counter-clockwise).
   std::span<const Vec2> world_vertices(int i) const {
@@ -162,10 +165,10 @@ class World {
   // radius of its two bodies (the run guard stops a run where that fraction exceeds 1); ratio 0 and a = b = -1
   // when there is no contact.
   struct DeepestOverlap {
-    double ratio = 0.0;   // depth / limit [-]
-    double depth = 0.0;   // [m]
-    double limit = 0.0;   // 0.5 x min(equivalent radius of a, of b) [m]
-    int a = -1, b = -1;   // body indices
+    double ratio = 0.0;  // depth / limit [-]
+    double depth = 0.0;  // [m]
+    double limit = 0.0;  // 0.5 x min(equivalent radius of a, of b) [m]
+    int a = -1, b = -1;  // body indices
   };
   const DeepestOverlap& deepest_overlap() const { return deepest_; }
   const contact::ContactCache& contact_cache() const { return cache_; }
@@ -184,10 +187,10 @@ class World {
   ContactResolution shortest_active_contact() const;
 
   // --- diagnostics ---
-  double kinetic_energy() const;             // dynamic bodies, translation + rotation [J]
-  Vec2 linear_momentum() const;              // dynamic bodies [kg m/s]
-  double angular_momentum() const;           // about the origin, z [kg m^2/s]
-  double max_speed() const;                  // [m/s]
+  double kinetic_energy() const;    // dynamic bodies, translation + rotation [J]
+  Vec2 linear_momentum() const;     // dynamic bodies [kg m/s]
+  double angular_momentum() const;  // about the origin, z [kg m^2/s]
+  double max_speed() const;         // [m/s]
 
   // The bodies' motion at the end of the last step, for the run guard (run/simulation.h): gathered in the final
   // kick's loop (no pass of its own), or anew when asked for after a change from outside (add_body, set_velocity,
@@ -300,17 +303,17 @@ class World {
   // hot state
   std::vector<Vec2> pos_, vel_, force_, ext_force_;
   std::vector<double> yaw_, omega_, torque_, ext_torque_, inv_mass_, inv_inertia_;
-  std::vector<Vec2> vel_eval_;       // velocity at which velocity-dependent forces are evaluated [m/s]
-  std::vector<double> omega_eval_;   // [rad/s]
+  std::vector<Vec2> vel_eval_;      // velocity at which velocity-dependent forces are evaluated [m/s]
+  std::vector<double> omega_eval_;  // [rad/s]
   // cold data
   std::vector<BodyId> id_;
   std::unordered_map<BodyId, int> index_;
   std::vector<std::shared_ptr<const geometry::ConvexPolygon>> shape_;
   std::vector<double> thickness_, mass_, inertia_, radius_, plan_area_;
   std::vector<double> draft_, side_area_, equivalent_radius_;  // [m], submerged side area [m^2], sqrt(A/pi) [m]
-  std::vector<int> quad_off_{0};      // body i's bottom/top quadrature points: quad_off_[i] .. quad_off_[i+1]-1
+  std::vector<int> quad_off_{0};           // body i's bottom/top quadrature points: quad_off_[i] .. quad_off_[i+1]-1
   std::vector<double> quad_lx_, quad_ly_;  // body-frame lever of each point from the centroid [m]
-  std::vector<double> quad_weight_;   // area carried [m^2]
+  std::vector<double> quad_weight_;        // area carried [m^2]
   // drift, where treated semi-implicitly: the drift part of force_/torque_ with the damping matrix of the last
   // evaluation (drag with frozen speed factors, Coriolis) ...
   std::vector<forcing::DriftLoad> drift_load_;
@@ -336,24 +339,24 @@ class World {
     std::uint64_t key = 0;
     int body = 0;
   };
-  struct SlotStatic {  // a packed copy of body data the pair loop reads; rewritten where the order changes
+  struct SlotStatic {     // a packed copy of body data the pair loop reads; rewritten where the order changes
     double mass = 0.0;    // [kg], +inf unless dynamic
     double radius = 0.0;  // [m], +inf unless dynamic
     double equivalent_radius = 0.0;  // sqrt(area / pi), also for walls [m]
     BodyId id = 0;
-    int body = 0;         // body index
-    int vert_begin = 0;   // into world_xy_
+    int body = 0;        // body index
+    int vert_begin = 0;  // into world_xy_
     int vert_count = 0;
   };
-  struct SlotState {  // gathered every force evaluation
+  struct SlotState {                    // gathered every force evaluation
     Vec2 pos{0.0, 0.0}, vel{0.0, 0.0};  // [m], [m/s] (velocity as evaluated)
     double omega = 0.0;                 // [rad/s]
   };
-  double order_cell_ = 1.0;         // [m], 4 x the mean equivalent radius of the dynamic bodies
-  double radius_sum_ = 0.0;         // of the dynamic bodies [m]
+  double order_cell_ = 1.0;  // [m], 4 x the mean equivalent radius of the dynamic bodies
+  double radius_sum_ = 0.0;  // of the dynamic bodies [m]
   int dynamic_count_ = 0;
-  std::vector<SlotKey> slots_;      // slot -> body, sorted by (key, body)
-  std::vector<int> body_slot_;      // body -> slot
+  std::vector<SlotKey> slots_;              // slot -> body, sorted by (key, body)
+  std::vector<int> body_slot_;              // body -> slot
   std::vector<std::pair<int, int>> moved_;  // slot intervals [first, last] the last sort permuted
   // Some slot changed bodies since the neighbour lists were built (their pairs may be out of order).
   bool slots_moved_ = true;
@@ -366,14 +369,14 @@ class World {
   // The broad phase's neighbour lists ("Verlet lists"): the pairs whose boxes, grown by skin_ / 2 on every side,
   // overlapped at the last build, as neighbour lists of the build's slots; valid while no vertex has moved more than
   // skin_ / 2 since (then every pair whose boxes overlap now is among them).
-  double skin_ = 0.0;                   // [m], WorldSettings::broad_phase_skin or 0.2 x the mean equivalent radius
-  std::vector<double> reach_;           // circumradius about the centroid, by body [m]
-  std::vector<Vec2> skin_pos_;          // poses at the last build, by body
+  double skin_ = 0.0;           // [m], WorldSettings::broad_phase_skin or 0.2 x the mean equivalent radius
+  std::vector<double> reach_;   // circumradius about the centroid, by body [m]
+  std::vector<Vec2> skin_pos_;  // poses at the last build, by body
   std::vector<double> skin_yaw_;
   // Neighbour lists by the build's slots (CSR; each pair once, in its lower slot's list), and the build's
   // slot -> body and body -> slot.
   std::vector<int> skin_off_, skin_adj_, skin_body_, skin_slot_;
-  std::vector<double> skin_gap_;    // per listed pair: its distance at the build, from below, less a margin [m]
+  std::vector<double> skin_gap_;  // per listed pair: its distance at the build, from below, less a margin [m]
   // Per listed pair: its overlap's topology at its last contact (planar_overlap checks it before use; unknown
   // after a build).
   std::vector<contact::OverlapTopology> skin_topo_;
@@ -387,7 +390,7 @@ class World {
   std::vector<std::uint32_t> skin_store_;
   std::vector<std::uint64_t> skin_store_gen_;
   std::uint64_t history_gen_ = ~std::uint64_t{0};
-  bool lists_built_ = true;  // the lists were built in this evaluation (their entries have no history yet)
+  bool lists_built_ = true;         // the lists were built in this evaluation (their entries have no history yet)
   std::vector<double> skin_moved_;  // by body: how far its vertices may have moved since the build [m]
   // Body i's skin_moved_ at its current pose, set; whether it is within `half` (half the skin). No vertex of the
   // body has moved further since the build (a rotation by dθ moves a vertex at r by 2 r sin(dθ/2) <= r |dθ|).
@@ -405,25 +408,25 @@ class World {
   int threads_ = 1;
   std::vector<contact::CandidatePair> pairs_;
   std::vector<std::vector<contact::CandidatePair>> pair_chunks_;  // the broad phase's scan, split between threads
-  mutable std::vector<ContactRecord> contacts_;  // listed on demand (contacts())
+  mutable std::vector<ContactRecord> contacts_;                   // listed on demand (contacts())
   mutable bool contacts_ready_ = true;
   std::size_t contact_count_ = 0;
   DeepestOverlap deepest_;
-  double dynamic_mass_ = 0.0;                 // [kg]
+  double dynamic_mass_ = 0.0;  // [kg]
   // Each damped body's damped_inverse for the drag matrix it has now and the step inverse_dt_ [s] (0: none kept;
   // cleared where the drag matrices change: a full drift evaluation, a restore, a new body).
   std::vector<DampedInverse> inverse_;
   double inverse_dt_ = 0.0;
-  mutable MotionSummary summary_;             // see motion_summary()
+  mutable MotionSummary summary_;  // see motion_summary()
   mutable bool summary_ready_ = false;
   mutable std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
-  void merge_motion_blocks() const;                  // motion_blocks_ into summary_, in block order
+  void merge_motion_blocks() const;                   // motion_blocks_ into summary_, in block order
   // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
   struct PairResult {
     bool hit = false;
     bool fallback = false;  // the 2-D GJK-EPA failed on it: measured exactly (beside `hit`: no growth in size)
     bool reused = false;    // its overlap was built from the kept topology (OverlapTopology::reused)
-    int a = 0, b = 0;  // slots, ordered by id
+    int a = 0, b = 0;       // slots, ordered by id
     ContactGeometry g;
     contact::ContactForce cf;
     Vec2 f{0.0, 0.0};  // on b
@@ -455,8 +458,8 @@ class World {
     std::vector<forcing::Vec3> side_points, quad_points;
     std::vector<Vec2> side_water, quad_fluid;
     std::vector<double> quad_rx, quad_ry, quad_fx, quad_fy;  // world-frame levers, sampled fluid (x, y)
-    int error_body = -1;      // the lowest body index whose field sample failed this step on this thread
-    std::string error_text;   // and the field's message
+    int error_body = -1;     // the lowest body index whose field sample failed this step on this thread
+    std::string error_text;  // and the field's message
   };
   std::vector<DriftScratch> drift_scratch_;
   std::size_t max_quad_points_ = 0, max_vertices_ = 0;

@@ -61,8 +61,7 @@ class LinearField final : public VelocityField {
  public:
   explicit LinearField(const FieldSpec& s) : u0_(s.velocity), o_(s.origin), g_(s.gradient), dz_(s.depth_gradient) {}
   void sample(double, std::span<const Vec3> p, std::span<Vec2> out) const override {
-    for (std::size_t i = 0; i < p.size(); ++i)
-      out[i] = u0_ + g_ * (p[i].head<2>() - o_) + p[i].z() * dz_;
+    for (std::size_t i = 0; i < p.size(); ++i) out[i] = u0_ + g_ * (p[i].head<2>() - o_) + p[i].z() * dz_;
   }
 
  private:
@@ -76,8 +75,11 @@ class LinearField final : public VelocityField {
 class VortexField final : public VelocityField {
  public:
   explicit VortexField(const FieldSpec& s)
-      : rankine_(s.kind == FieldKind::rankine), c_(s.origin), u0_(s.velocity),
-        omega_(rankine_ ? s.max_speed / s.core_radius : s.angular_velocity), r_core_(s.core_radius),
+      : rankine_(s.kind == FieldKind::rankine),
+        c_(s.origin),
+        u0_(s.velocity),
+        omega_(rankine_ ? s.max_speed / s.core_radius : s.angular_velocity),
+        r_core_(s.core_radius),
         v_max_(s.max_speed) {}
   void sample(double, std::span<const Vec3> p, std::span<Vec2> out) const override {
     for (std::size_t i = 0; i < p.size(); ++i) {

@@ -166,7 +166,7 @@ void add_surface_drag(DriftLoad& load, double coefficient, double rho, const Flo
 }
 
 void add_coriolis(DriftLoad& load, double mass, double f, const Vec2& u) {
-  const double mf = mass * f;  // [kg/s]
+  const double mf = mass * f;                 // [kg/s]
   load.force -= mf * geometry::perp_left(u);  // -m f k x u = -C u with C = m f [[0, -1], [1, 0]]
   load.mf += mf;
 }

@@ -22,7 +22,7 @@
 namespace polyfloe::forcing {
 
 constexpr double kEarthRotationRate = 7.2921159e-5;  // sidereal rotation rate of the Earth [rad/s]
-constexpr double kEarthRadius = 6.371e6;              // mean radius [m]
+constexpr double kEarthRadius = 6.371e6;             // mean radius [m]
 
 // How drag and Coriolis enter the time step.
 enum class DriftTreatment {
@@ -33,26 +33,26 @@ std::string_view to_string(DriftTreatment t);
 
 struct DriftSettings {
   // Ocean (paper Eq. 10-13)
-  double water_density = 1025.0;           // rho_w [kg/m^3]
-  std::shared_ptr<const OceanField> ocean; // current; null = still water
-  bool form_drag = true;                   // Eq. 11 on the submerged side faces
-  double form_drag_coefficient = 0.20;     // C_d^F [-]
-  bool moment_drag = true;                 // Eq. 12 (with r_e^3, see docs/model.md)
-  double moment_drag_coefficient = 0.14;   // C_d^M [-]
-  bool skin_drag = true;                   // Eq. 13 on the bottom
-  double skin_drag_coefficient = 0.0055;   // c_w [-]
+  double water_density = 1025.0;            // rho_w [kg/m^3]
+  std::shared_ptr<const OceanField> ocean;  // current; null = still water
+  bool form_drag = true;                    // Eq. 11 on the submerged side faces
+  double form_drag_coefficient = 0.20;      // C_d^F [-]
+  bool moment_drag = true;                  // Eq. 12 (with r_e^3, see docs/model.md)
+  double moment_drag_coefficient = 0.14;    // C_d^M [-]
+  bool skin_drag = true;                    // Eq. 13 on the bottom
+  double skin_drag_coefficient = 0.0055;    // c_w [-]
   // Air (Eq. 14)
-  double air_density = 1.2;                // rho_a [kg/m^3]
-  std::shared_ptr<const WindField> wind;   // null = calm
+  double air_density = 1.2;               // rho_a [kg/m^3]
+  std::shared_ptr<const WindField> wind;  // null = calm
   bool air_drag = true;
-  double air_drag_coefficient = 0.0012;    // c_a [-]
+  double air_drag_coefficient = 0.0012;  // c_a [-]
   // Bottom and top integrals
   Quadrature quadrature = Quadrature::degree2;  // see docs/figures/drift_quadrature.png
   // Coriolis -m f k x u, f = 2 Omega sin(latitude) [+ beta (y - reference_y) on a beta plane]
   bool coriolis = false;
-  double latitude = 75.0;                  // [deg], [-90, 90]
-  bool beta_plane = false;                 // beta = 2 Omega cos(latitude) / R_earth
-  double reference_y = 0.0;                // y where f = f0 [m]
+  double latitude = 75.0;    // [deg], [-90, 90]
+  bool beta_plane = false;   // beta = 2 Omega cos(latitude) / R_earth
+  double reference_y = 0.0;  // y where f = f0 [m]
   DriftTreatment treatment = DriftTreatment::semi_implicit;
   // The loads are evaluated in full every `update_every` steps [-]; between, each body's drift load comes from the
   // linear model of the last full evaluation, F_d(v) = b - D v (semi-implicit treatment only; 1 = every step).
@@ -77,7 +77,7 @@ struct DriftLoad {
   double torque = 0.0;   // [N m]
   // symmetric drag part [N s/m; N s; N m s]
   double dxx = 0.0, dxy = 0.0, dyy = 0.0, dxw = 0.0, dyw = 0.0, dww = 0.0;
-  double mf = 0.0;       // Coriolis m f [kg/s]
+  double mf = 0.0;  // Coriolis m f [kg/s]
 
   // A sample force f = -c w at lever r from the centre: w the sample's velocity relative to the fluid [m/s], c >= 0
   // its speed factor [N s/m] (k |w| for quadratic drag, k (w.n) for a face). The derivative added is the quadratic

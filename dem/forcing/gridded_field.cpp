@@ -22,8 +22,7 @@ std::string axis_error(const std::vector<double>& a, const char* name, std::size
       return os.str();
     }
     if (i > 0 && !(a[i] > a[i - 1])) {
-      os << "axis " << name << " is not strictly increasing at index " << i << " (" << a[i - 1] << ", " << a[i]
-         << ")";
+      os << "axis " << name << " is not strictly increasing at index " << i << " (" << a[i - 1] << ", " << a[i] << ")";
       return os.str();
     }
   }
@@ -61,8 +60,8 @@ std::string grid_data_error(const GridData& g) {
   std::ostringstream os;
   for (auto [c, name] : {std::pair{&g.u, "u"}, {&g.v, "v"}}) {
     if (c->size() != total) {
-      os << name << " has " << c->size() << " values, expected " << total << " (t x z x y x x = " << g.t.size()
-         << " x " << g.z.size() << " x " << g.y.size() << " x " << g.x.size() << ")";
+      os << name << " has " << c->size() << " values, expected " << total << " (t x z x y x x = " << g.t.size() << " x "
+         << g.z.size() << " x " << g.y.size() << " x " << g.x.size() << ")";
       return os.str();
     }
     for (std::size_t k = 0; k < total; ++k)
@@ -98,7 +97,8 @@ std::vector<LandRectangle> land_rectangles(const GridData& g) {
   for (std::size_t k = 1; k < g.z.size(); ++k)
     if (std::abs(g.z[k]) < std::abs(g.z[iz])) iz = k;
   // A node's square: from half-way to its neighbours (half a spacing beyond the grid's first and last nodes).
-  auto edge = [](const std::vector<double>& a, std::size_t i) {  // the boundary below node i (i = a.size(): above the last)
+  auto edge = [](const std::vector<double>& a,
+                 std::size_t i) {  // the boundary below node i (i = a.size(): above the last)
     if (i == 0) return a[0] - 0.5 * (a[1] - a[0]);
     if (i == a.size()) return a.back() + 0.5 * (a.back() - a[a.size() - 2]);
     return 0.5 * (a[i - 1] + a[i]);

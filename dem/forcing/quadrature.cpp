@@ -26,8 +26,12 @@ struct TrianglePoint {
 constexpr double kA4 = 0.445948490915965, kB4 = 0.108103018168070, kW4a = 0.223381589678011;
 constexpr double kC4 = 0.091576213509771, kD4 = 0.816847572980459, kW4b = 0.109951743655322;
 constexpr std::array<TrianglePoint, 6> kDegree4{{
-    {kB4, kA4, kA4, kW4a}, {kA4, kB4, kA4, kW4a}, {kA4, kA4, kB4, kW4a},
-    {kD4, kC4, kC4, kW4b}, {kC4, kD4, kC4, kW4b}, {kC4, kC4, kD4, kW4b},
+    {kB4, kA4, kA4, kW4a},
+    {kA4, kB4, kA4, kW4a},
+    {kA4, kA4, kB4, kW4a},
+    {kD4, kC4, kC4, kW4b},
+    {kC4, kD4, kC4, kW4b},
+    {kC4, kC4, kD4, kW4b},
 }};
 
 // Radon's 7-point rule (degree 5).
@@ -35,8 +39,12 @@ constexpr double kA5 = 0.470142064105115, kB5 = 0.059715871789770, kW5a = 0.1323
 constexpr double kC5 = 0.101286507323456, kD5 = 0.797426985353087, kW5b = 0.125939180544827;
 constexpr std::array<TrianglePoint, 7> kDegree5{{
     {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0, 0.225},
-    {kB5, kA5, kA5, kW5a}, {kA5, kB5, kA5, kW5a}, {kA5, kA5, kB5, kW5a},
-    {kD5, kC5, kC5, kW5b}, {kC5, kD5, kC5, kW5b}, {kC5, kC5, kD5, kW5b},
+    {kB5, kA5, kA5, kW5a},
+    {kA5, kB5, kA5, kW5a},
+    {kA5, kA5, kB5, kW5a},
+    {kD5, kC5, kC5, kW5b},
+    {kC5, kD5, kC5, kW5b},
+    {kC5, kC5, kD5, kW5b},
 }};
 
 std::span<const TrianglePoint> triangle_rule(Quadrature q) {

@@ -14,7 +14,8 @@ namespace {
 
 constexpr const char* kFormat = "polyfloe-ocean-field";
 constexpr std::int64_t kFormatVersion = 1;
-constexpr int kDeflateLevel = 1;  // [1, 9]: with the shuffle filter, level 1 compresses a field nearly as well as 9, fastest
+constexpr int kDeflateLevel =
+    1;  // [1, 9]: with the shuffle filter, level 1 compresses a field nearly as well as 9, fastest
 // Nodes (t x z x y x x) a field file may have: 2.4 GB of velocities as doubles, read twice over.
 constexpr double kMaxFieldNodes = 1e8;
 
@@ -47,8 +48,8 @@ void write_field_file(const fs::path& path, const FieldFile& f) {
   if (std::string e = forcing::grid_data_error(g); !e.empty()) fail(path, "cannot write this field: " + e);
   const std::size_t total = g.u.size();
   if (!f.w.empty() && f.w.size() != total)
-    fail(path, "cannot write this field: w has " + std::to_string(f.w.size()) + " values, expected " +
-                   std::to_string(total));
+    fail(path,
+         "cannot write this field: w has " + std::to_string(f.w.size()) + " values, expected " + std::to_string(total));
   std::vector<double> uvw(3 * total);
   for (std::size_t k = 0; k < total; ++k) {
     uvw[3 * k] = g.u[k];

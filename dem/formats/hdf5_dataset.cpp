@@ -67,8 +67,7 @@ void Dataset::write_raw(const void* data, DType type, std::size_t count) {
   const Dims d = dims();
   ErrorScope scope(where());
   if (count != element_count(d)) {
-    scope.fail("writing " + std::to_string(count) + " values into " + std::to_string(element_count(d)) +
-               " elements");
+    scope.fail("writing " + std::to_string(count) + " values into " + std::to_string(element_count(d)) + " elements");
   }
   if (count == 0) return;
   scope.check(H5Dwrite(handle_.id(), memory_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dwrite");
@@ -104,8 +103,7 @@ void Dataset::append_raw(const void* data, DType type, std::size_t count, std::u
   scope.check(H5Dwrite(handle_.id(), memory_type(type), mspace.id(), fspace.id(), H5P_DEFAULT, data), "H5Dwrite");
 }
 
-void Dataset::read_rows_raw(void* out, DType type, std::uint64_t first, std::uint64_t count,
-                            std::size_t size) const {
+void Dataset::read_rows_raw(void* out, DType type, std::uint64_t first, std::uint64_t count, std::size_t size) const {
   const Dims d = dims();
   ErrorScope scope(where());
   if (d.empty()) {  // scalar
@@ -141,8 +139,8 @@ bool Dataset::extendible() const {
 
 void Dataset::append_rows_from(const Dataset& source, std::uint64_t rows) {
   const Dims from = source.dims(), to = dims();
-  if (from.size() != to.size() || !std::equal(from.begin() + (from.empty() ? 0 : 1), from.end(),
-                                              to.begin() + (to.empty() ? 0 : 1))) {
+  if (from.size() != to.size() ||
+      !std::equal(from.begin() + (from.empty() ? 0 : 1), from.end(), to.begin() + (to.empty() ? 0 : 1))) {
     ErrorScope(where()).fail("copying rows from " + source.where() + " (a different row shape)");
   }
   if (!from.empty() && rows > from[0]) {
@@ -155,7 +153,8 @@ void Dataset::append_rows_from(const Dataset& source, std::uint64_t rows) {
   if (type == DType::f32 || type == DType::i32 || type == DType::u32) bytes = 4;
   if (type == DType::i8 || type == DType::u8) bytes = 1;
   // About 64 MiB at a time, at least one row.
-  const std::uint64_t batch = std::max<std::uint64_t>(1, (std::uint64_t{64} << 20) / std::max<std::uint64_t>(1, row * bytes));
+  const std::uint64_t batch =
+      std::max<std::uint64_t>(1, (std::uint64_t{64} << 20) / std::max<std::uint64_t>(1, row * bytes));
   std::vector<std::uint64_t> buffer;  // 8-byte aligned for every type
   for (std::uint64_t first = 0; first < rows; first += batch) {
     const std::uint64_t count = std::min(batch, rows - first);

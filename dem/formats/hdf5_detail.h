@@ -94,9 +94,7 @@ inline hid_t file_type(DType t) {
 inline std::vector<hsize_t> to_hsize(const Dims& d) { return {d.begin(), d.end()}; }
 
 // A scratch identifier (dataspace, datatype, property list) closed at scope exit.
-inline Handle scratch(const ErrorScope& scope, hid_t id, const char* call) {
-  return Handle(scope.check(id, call), {});
-}
+inline Handle scratch(const ErrorScope& scope, hid_t id, const char* call) { return Handle(scope.check(id, call), {}); }
 
 inline Handle variable_string_type(const ErrorScope& scope) {
   Handle type = scratch(scope, H5Tcopy(H5T_C_S1), "H5Tcopy");

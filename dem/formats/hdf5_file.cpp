@@ -74,8 +74,7 @@ Handle fresh_scalar_attribute(const ErrorScope& scope, hid_t owner, const std::s
     scope.check(H5Adelete(owner, name.c_str()), "H5Adelete");
   }
   Handle space = scratch(scope, H5Screate(H5S_SCALAR), "H5Screate");
-  return scratch(scope, H5Acreate2(owner, name.c_str(), type, space.id(), H5P_DEFAULT, H5P_DEFAULT),
-                 "H5Acreate2");
+  return scratch(scope, H5Acreate2(owner, name.c_str(), type, space.id(), H5P_DEFAULT, H5P_DEFAULT), "H5Acreate2");
 }
 
 }  // namespace
@@ -174,8 +173,7 @@ Group Group::create_group(std::string_view child) {
   const std::string c(child), w = where_of(child);
   ErrorScope scope(w);
   Handle lcpl = intermediate_groups(scope);
-  const hid_t id = scope.check(H5Gcreate2(handle_.id(), c.c_str(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT),
-                               "H5Gcreate2");
+  const hid_t id = scope.check(H5Gcreate2(handle_.id(), c.c_str(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT), "H5Gcreate2");
   return Group(Handle(id, w), child_name(child), file_);
 }
 
@@ -186,21 +184,18 @@ Group Group::open_group(std::string_view child) const {
   return Group(Handle(id, w), child_name(child), file_);
 }
 
-Group Group::require_group(std::string_view child) {
-  return exists(child) ? open_group(child) : create_group(child);
-}
+Group Group::require_group(std::string_view child) { return exists(child) ? open_group(child) : create_group(child); }
 
 Dataset Group::create_dataset(std::string_view child, DType type, const Dims& dims) {
   const std::string c(child), w = where_of(child);
   ErrorScope scope(w);
   if (dims.empty()) scope.fail("creating a dataset of rank 0");
   const auto d = to_hsize(dims);
-  Handle space = scratch(scope, H5Screate_simple(static_cast<int>(d.size()), d.data(), nullptr),
-                         "H5Screate_simple");
+  Handle space = scratch(scope, H5Screate_simple(static_cast<int>(d.size()), d.data(), nullptr), "H5Screate_simple");
   Handle lcpl = intermediate_groups(scope);
-  const hid_t id = scope.check(
-      H5Dcreate2(handle_.id(), c.c_str(), file_type(type), space.id(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT),
-      "H5Dcreate2");
+  const hid_t id =
+      scope.check(H5Dcreate2(handle_.id(), c.c_str(), file_type(type), space.id(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT),
+                  "H5Dcreate2");
   return Dataset(Handle(id, w), child_name(child), file_);
 }
 
@@ -222,8 +217,8 @@ Dataset Group::create_series(std::string_view child, DType type, const Dims& row
   constexpr hsize_t kMaxChunkBytes = hsize_t{1} << 28;
   chunk[0] = std::clamp<hsize_t>(chunk_rows, 1, std::max<hsize_t>(1, kMaxChunkBytes / row_bytes));
 
-  Handle space = scratch(scope, H5Screate_simple(static_cast<int>(rank), dims.data(), max_dims.data()),
-                         "H5Screate_simple");
+  Handle space =
+      scratch(scope, H5Screate_simple(static_cast<int>(rank), dims.data(), max_dims.data()), "H5Screate_simple");
   Handle dcpl = scratch(scope, H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate");
   scope.check(H5Pset_chunk(dcpl.id(), static_cast<int>(rank), chunk.data()), "H5Pset_chunk");
   if (deflate_level > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
@@ -231,9 +226,9 @@ Dataset Group::create_series(std::string_view child, DType type, const Dims& row
     scope.check(H5Pset_deflate(dcpl.id(), static_cast<unsigned>(std::min(deflate_level, 9))), "H5Pset_deflate");
   }
   Handle lcpl = intermediate_groups(scope);
-  const hid_t id = scope.check(
-      H5Dcreate2(handle_.id(), c.c_str(), file_type(type), space.id(), lcpl.id(), dcpl.id(), H5P_DEFAULT),
-      "H5Dcreate2");
+  const hid_t id =
+      scope.check(H5Dcreate2(handle_.id(), c.c_str(), file_type(type), space.id(), lcpl.id(), dcpl.id(), H5P_DEFAULT),
+                  "H5Dcreate2");
   return Dataset(Handle(id, w), child_name(child), file_);
 }
 
@@ -270,8 +265,7 @@ File::File(const fs::path& path, Mode mode) : path_(path) {
       break;
     case Mode::read_write: id = H5Fopen(name.c_str(), H5F_ACC_RDWR, H5P_DEFAULT); break;
   }
-  file_ = Handle(scope.check(id, mode == Mode::truncate || mode == Mode::exclusive ? "H5Fcreate" : "H5Fopen"),
-                 name);
+  file_ = Handle(scope.check(id, mode == Mode::truncate || mode == Mode::exclusive ? "H5Fcreate" : "H5Fopen"), name);
   const hid_t root = scope.check(H5Gopen2(file_.id(), "/", H5P_DEFAULT), "H5Gopen2");
   root_ = Group(Handle(root, name + ":/"), "/", path_);
 }

@@ -32,15 +32,24 @@ enum class DType : std::uint8_t { f32, f64, i8, u8, i32, u32, i64, u64 };
 
 template <class T>
 constexpr DType dtype_of() {
-  if constexpr (std::is_same_v<T, float>) return DType::f32;
-  else if constexpr (std::is_same_v<T, double>) return DType::f64;
-  else if constexpr (std::is_same_v<T, std::int8_t>) return DType::i8;
-  else if constexpr (std::is_same_v<T, std::uint8_t>) return DType::u8;
-  else if constexpr (std::is_same_v<T, std::int32_t>) return DType::i32;
-  else if constexpr (std::is_same_v<T, std::uint32_t>) return DType::u32;
-  else if constexpr (std::is_same_v<T, std::int64_t>) return DType::i64;
-  else if constexpr (std::is_same_v<T, std::uint64_t>) return DType::u64;
-  else static_assert(sizeof(T) == 0, "unsupported HDF5 element type");
+  if constexpr (std::is_same_v<T, float>)
+    return DType::f32;
+  else if constexpr (std::is_same_v<T, double>)
+    return DType::f64;
+  else if constexpr (std::is_same_v<T, std::int8_t>)
+    return DType::i8;
+  else if constexpr (std::is_same_v<T, std::uint8_t>)
+    return DType::u8;
+  else if constexpr (std::is_same_v<T, std::int32_t>)
+    return DType::i32;
+  else if constexpr (std::is_same_v<T, std::uint32_t>)
+    return DType::u32;
+  else if constexpr (std::is_same_v<T, std::int64_t>)
+    return DType::i64;
+  else if constexpr (std::is_same_v<T, std::uint64_t>)
+    return DType::u64;
+  else
+    static_assert(sizeof(T) == 0, "unsupported HDF5 element type");
 }
 
 using Dims = std::vector<std::uint64_t>;
@@ -60,7 +69,7 @@ class Handle {
   std::int64_t id() const { return id_; }
   bool valid() const { return id_ >= 0; }
   const std::string& where() const { return where_; }
-  void reset() noexcept;  // closes now (errors on close are ignored here; File::close() reports them)
+  void reset() noexcept;            // closes now (errors on close are ignored here; File::close() reports them)
   std::int64_t release() noexcept;  // gives up ownership without closing
 
  private:
@@ -72,7 +81,7 @@ class Handle {
 class Object {
  public:
   const std::string& where() const { return handle_.where(); }  // "file.h5:/path"
-  const std::string& name() const { return name_; }              // "/path" inside the file
+  const std::string& name() const { return name_; }             // "/path" inside the file
 
   bool has_attribute(std::string_view attr) const;
   // Creates or replaces a scalar attribute. Strings are stored as variable-length UTF-8 (any length).

@@ -61,7 +61,7 @@ __attribute__((target("avx2"))) bool inside_avx2(std::span<const Vec2> poly, con
     if (k + 4 > n) k = n - 4;
     const __m256d l0 = _mm256_sub_pd(_mm256_loadu_pd(p + 2 * k), o);      // poly[k], poly[k + 1]
     const __m256d l1 = _mm256_sub_pd(_mm256_loadu_pd(p + 2 * k + 4), o);  // poly[k + 2], poly[k + 3]
-    const __m256d m0 = _mm256_sub_pd(  // poly[k - 1], poly[k]
+    const __m256d m0 = _mm256_sub_pd(                                     // poly[k - 1], poly[k]
         k == 0 ? _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p + 2 * (n - 1))), _mm_loadu_pd(p), 1)
                : _mm256_loadu_pd(p + 2 * k - 2),
         o);

@@ -89,7 +89,8 @@ std::string convexity_error(std::span<const Vec2> v) {
     total_turn += std::atan2(c, e0.dot(e1));
   }
   // All left turns but winding more than once (a star) is not a simple polygon.
-  if (std::abs(total_turn - 2.0 * std::numbers::pi) > 1e-6) return "polygon winds around more than once (self-intersecting)";
+  if (std::abs(total_turn - 2.0 * std::numbers::pi) > 1e-6)
+    return "polygon winds around more than once (self-intersecting)";
   return {};
 }
 
@@ -109,7 +110,8 @@ ConvexPolygon ConvexPolygon::from_vertices(std::span<const Vec2> vertices, Vec2*
 
 ConvexPolygon ConvexPolygon::regular(int sides, double circumradius) {
   if (sides < 3) throw GeometryError("a regular polygon needs at least 3 sides");
-  if (!(circumradius > 0.0) || !std::isfinite(circumradius)) throw GeometryError("circumradius must be positive and finite");
+  if (!(circumradius > 0.0) || !std::isfinite(circumradius))
+    throw GeometryError("circumradius must be positive and finite");
   std::vector<Vec2> v;
   v.reserve(static_cast<std::size_t>(sides));
   for (int i = 0; i < sides; ++i) {

@@ -52,11 +52,11 @@ class ConvexPolygon {
 
   const std::vector<Vec2>& vertices() const { return vertices_; }
   int size() const { return static_cast<int>(vertices_.size()); }
-  double area() const { return area_; }                   // [m^2]
-  double perimeter() const { return perimeter_; }         // [m]
-  double polar_moment() const { return polar_moment_; }   // integral of r^2 dA about the centroid [m^4]
-  double circumradius() const { return circumradius_; }   // max vertex distance from the centroid [m]
-  double equivalent_radius() const;                       // sqrt(area / pi) [m]
+  double area() const { return area_; }                  // [m^2]
+  double perimeter() const { return perimeter_; }        // [m]
+  double polar_moment() const { return polar_moment_; }  // integral of r^2 dA about the centroid [m^4]
+  double circumradius() const { return circumradius_; }  // max vertex distance from the centroid [m]
+  double equivalent_radius() const;                      // sqrt(area / pi) [m]
   double circularity() const { return geometry::circularity(area_, perimeter_); }
 
  private:

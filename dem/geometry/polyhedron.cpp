@@ -18,8 +18,8 @@ void add_tetrahedron(const Vec3& r, const Vec3& a, const Vec3& b, const Vec3& c,
   const Vec3 s = r + a + b + c;
   six_volume += d;
   moment += d * s / 24.0;  // V s / 4
-  second += d / 120.0 * (r * r.transpose() + a * a.transpose() + b * b.transpose() + c * c.transpose() +
-                         s * s.transpose());
+  second +=
+      d / 120.0 * (r * r.transpose() + a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
 }
 
 }  // namespace
@@ -54,9 +54,7 @@ ConvexPolyhedron ConvexPolyhedron::box(const Vec3& size) {
   return prism(ConvexPolygon::rectangle(size.x(), size.y()), size.z());
 }
 
-double ConvexPolyhedron::equivalent_radius() const {
-  return std::cbrt(3.0 * volume_ / (4.0 * std::numbers::pi));
-}
+double ConvexPolyhedron::equivalent_radius() const { return std::cbrt(3.0 * volume_ / (4.0 * std::numbers::pi)); }
 
 void ConvexPolyhedron::finish() {
   if (vertices_.size() < 4 || faces_.size() < 4) throw GeometryError("a polyhedron needs >= 4 vertices and faces");

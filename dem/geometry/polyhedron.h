@@ -20,9 +20,9 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
 struct PolyhedronFace {
-  std::vector<int> loop;  // vertex indices, counter-clockwise seen from outside
+  std::vector<int> loop;       // vertex indices, counter-clockwise seen from outside
   Vec3 normal{0.0, 0.0, 1.0};  // outward unit normal
-  double offset = 0.0;    // plane: normal . x = offset [m]
+  double offset = 0.0;         // plane: normal . x = offset [m]
 };
 
 class ConvexPolyhedron {
@@ -38,9 +38,9 @@ class ConvexPolyhedron {
   const std::vector<std::pair<int, int>>& edges() const { return edges_; }
   // Unit edge directions, one per set of parallel edges (the separating-axis test's edge x edge candidates).
   const std::vector<Vec3>& edge_directions() const { return edge_directions_; }
-  double volume() const { return volume_; }                  // [m^3]
+  double volume() const { return volume_; }                   // [m^3]
   const Mat3& unit_inertia() const { return unit_inertia_; }  // inertia tensor about the centroid / density [m^5]
-  double circumradius() const { return circumradius_; }      // max vertex distance from the centroid [m]
+  double circumradius() const { return circumradius_; }       // max vertex distance from the centroid [m]
   // Radius of the sphere of equal volume [m] (the Hertz contact radius of a spatial body).
   double equivalent_radius() const;
 
@@ -59,8 +59,8 @@ class ConvexPolyhedron {
 // z = level: the displaced water of a floating body. Faces are clipped at the plane; the cap on the plane adds
 // nothing to either integral (divergence theorem with x.n = 0 ... see polyhedron.cpp). Zero volume above water.
 struct SubmergedPart {
-  double volume = 0.0;            // [m^3]
-  Vec3 centroid{0.0, 0.0, 0.0};   // centre of buoyancy [m]
+  double volume = 0.0;           // [m^3]
+  Vec3 centroid{0.0, 0.0, 0.0};  // centre of buoyancy [m]
 };
 SubmergedPart submerged_part(const ConvexPolyhedron& shape, std::span<const Vec3> world_vertices, double level);
 

@@ -59,13 +59,12 @@ struct Hdf5Writer::Impl {
   Dataset time;
   hdf5::Group diagnostics;
   Dataset position, orientation, velocity, angular_velocity;
-  Dataset vertices_xy;                   // [T, V, 2] float32: the polygons where they are (for results.xmf)
-  std::vector<double> body_xy;           // body-frame vertices, as floes/polygon_xy
-  std::vector<std::int64_t> offsets;     // as floes/polygon_offsets
-  std::uint64_t topology_size = 0;       // entries of floes/xdmf_topology
+  Dataset vertices_xy;                // [T, V, 2] float32: the polygons where they are (for results.xmf)
+  std::vector<double> body_xy;        // body-frame vertices, as floes/polygon_xy
+  std::vector<std::int64_t> offsets;  // as floes/polygon_offsets
+  std::uint64_t topology_size = 0;    // entries of floes/xdmf_topology
   std::vector<float> row_xy;
-  Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum,
-      angular_momentum;
+  Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum, angular_momentum;
   std::vector<Dataset> extra;
   // loads on walls and plates
   std::vector<int> boundary;  // indices of the fixed and kinematic bodies
@@ -105,9 +104,9 @@ struct Hdf5Writer::Impl {
         xy.push_back(v.y());
       }
       offsets.push_back(offsets.back() + shape.size());
-      const double volume = shape.area() * thickness[k];                   // [m^3]
-      const double density = volume > 0.0 ? mass[k] / volume : 0.0;       // [kg/m^3]
-      double draft = thickness[k] * density / water_density;              // [m]
+      const double volume = shape.area() * thickness[k];             // [m^3]
+      const double density = volume > 0.0 ? mass[k] / volume : 0.0;  // [kg/m^3]
+      double draft = thickness[k] * density / water_density;         // [m]
       if (!std::isfinite(draft)) draft = 0.0;
       centre_z[k] = 0.5 * thickness[k] - draft;
     }
@@ -163,8 +162,7 @@ struct Hdf5Writer::Impl {
     max_speed = root_series(diag, "max_speed", DType::f64, {}, kSeriesChunk, "m/s", "over dynamic bodies");
     mean_speed = root_series(diag, "mean_speed", DType::f64, {}, kSeriesChunk, "m/s", "over dynamic bodies");
     max_overlap_depth = root_series(diag, "max_overlap_depth", DType::f64, {}, kSeriesChunk, "m");
-    linear_momentum = root_series(diag, "linear_momentum", DType::f64, {2}, kSeriesChunk, "kg m/s",
-                                  "dynamic bodies");
+    linear_momentum = root_series(diag, "linear_momentum", DType::f64, {2}, kSeriesChunk, "kg m/s", "dynamic bodies");
     angular_momentum = root_series(diag, "angular_momentum", DType::f64, {}, kSeriesChunk, "kg m^2/s",
                                    "dynamic bodies, about the origin");
     for (int i = 0; i < n; ++i)
@@ -214,8 +212,9 @@ struct Hdf5Writer::Impl {
       face_intact = g.create_series("face_intact", DType::u8, {nf}, 1, 1);
       units(face_intact, "1", "[frame, face] 1 while the face holds");
       point_intact = g.create_series("point_intact", DType::u8, {b->points()}, 1, 1);
-      units(point_intact, "1", "[frame, point] 1 while the bond point holds; face f has points_per_face points from "
-                               "f x points_per_face");
+      units(point_intact, "1",
+            "[frame, point] 1 while the bond point holds; face f has points_per_face points from "
+            "f x points_per_face");
     }
     std::vector<std::pair<std::string, hdf5::Group>> groups;
     for (const ExtraSeries& e : extra_series) {
@@ -250,9 +249,8 @@ struct Hdf5Writer::Impl {
     const auto n = static_cast<int>(bodies);
     for (int i = 0; i < n; ++i) {
       if (world.id(i) != ids[static_cast<std::size_t>(i)]) {
-        throw IoError(file.path().string() + ": body " + std::to_string(i) + " has id " +
-                      std::to_string(world.id(i)) + ", the file was started with " +
-                      std::to_string(ids[static_cast<std::size_t>(i)]));
+        throw IoError(file.path().string() + ": body " + std::to_string(i) + " has id " + std::to_string(world.id(i)) +
+                      ", the file was started with " + std::to_string(ids[static_cast<std::size_t>(i)]));
       }
     }
     const auto pos = world.positions();
@@ -414,8 +412,7 @@ void Hdf5Writer::write_xdmf(const std::filesystem::path& xmf) {
   auto slab = [&](std::uint64_t k, std::uint64_t rows, std::uint64_t cols, const char* type, int precision,
                   const std::string& path) {
     x << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << rows << " " << cols << "\">"
-      << "<DataItem Dimensions=\"3 3\" Format=\"XML\">" << k << " 0 0 1 1 1 1 " << rows << " " << cols
-      << "</DataItem>";
+      << "<DataItem Dimensions=\"3 3\" Format=\"XML\">" << k << " 0 0 1 1 1 1 " << rows << " " << cols << "</DataItem>";
     item(std::to_string(t) + " " + std::to_string(rows) + " " + std::to_string(cols), type, precision, path);
     x << "</DataItem>";
   };

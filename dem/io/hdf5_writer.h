@@ -52,17 +52,17 @@ void write_run_attributes(hdf5::Group& root, const RunInfo& info);
 
 // A scalar series the driver adds to /diagnostics/<group>/<name>, one value per frame.
 struct ExtraSeries {
-  std::string group;        // e.g. "channel"
-  std::string name;         // e.g. "area_flux"
-  std::string units;        // e.g. "m^2/s"
+  std::string group;  // e.g. "channel"
+  std::string name;   // e.g. "area_flux"
+  std::string units;  // e.g. "m^2/s"
   std::string description;
 };
 
 class Hdf5Writer {
  public:
   // Creates (replaces) `file` and writes the static data of `world`'s bodies. Throws IoError naming the file.
-  Hdf5Writer(const std::filesystem::path& file, const dynamics::World& world, const RunInfo& info,
-             double water_density, const std::vector<ExtraSeries>& extra = {});
+  Hdf5Writer(const std::filesystem::path& file, const dynamics::World& world, const RunInfo& info, double water_density,
+             const std::vector<ExtraSeries>& extra = {});
   ~Hdf5Writer();
   Hdf5Writer(Hdf5Writer&&) noexcept;
   Hdf5Writer& operator=(Hdf5Writer&&) noexcept;

@@ -55,8 +55,8 @@ class Progress {
   double start_t_ = 0.0;
   std::uint64_t start_steps_ = 0;  // at the first update (rates)
   std::uint64_t first_step_ = 0;   // at the start of the run (the summary's count)
-  int next_decile_ = 1;         // non-interactive: next 10 % mark to report
-  std::size_t drawn_width_ = 0;  // interactive: length of the line on screen
+  int next_decile_ = 1;            // non-interactive: next 10 % mark to report
+  std::size_t drawn_width_ = 0;    // interactive: length of the line on screen
   bool finished_ = false;
 };
 

@@ -36,13 +36,14 @@ using namespace detail;
 
 namespace {
 
-void add_time(vtkDataObject* data, const dynamics::World& world) { detail::add_time(data, world.time(), world.step_count()); }
-
+void add_time(vtkDataObject* data, const dynamics::World& world) {
+  detail::add_time(data, world.time(), world.step_count());
+}
 
 // Body i's draft [m] at its equilibrium in still water (0 where its density is unknown).
 double draft_of(const dynamics::World& world, int i, double water_density) {
-  const double h = world.thickness(i);                                  // [m]
-  const double volume = world.shape(i).area() * h;                      // [m^3]
+  const double h = world.thickness(i);                                 // [m]
+  const double volume = world.shape(i).area() * h;                     // [m^3]
   const double density = volume > 0.0 ? world.mass(i) / volume : 0.0;  // [kg/m^3]
   const double draft = h * density / water_density;
   return std::isfinite(draft) ? draft : 0.0;
@@ -134,9 +135,9 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
   vtkNew<vtkCellArray> polys;
   polys->SetData(offsets, conn);
   data->SetPolys(polys);
-  for (vtkDataArray* a : {static_cast<vtkDataArray*>(id), static_cast<vtkDataArray*>(velocity),
-                          static_cast<vtkDataArray*>(speed), static_cast<vtkDataArray*>(omega),
-                          static_cast<vtkDataArray*>(thickness), static_cast<vtkDataArray*>(motion)}) {
+  for (vtkDataArray* a :
+       {static_cast<vtkDataArray*>(id), static_cast<vtkDataArray*>(velocity), static_cast<vtkDataArray*>(speed),
+        static_cast<vtkDataArray*>(omega), static_cast<vtkDataArray*>(thickness), static_cast<vtkDataArray*>(motion)}) {
     data->GetCellData()->AddArray(a);
   }
   if (const bonds::BondSet* b = world.bonds()) {
@@ -191,7 +192,8 @@ vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world, double
     const double c = std::cos(yaw[a]), s = std::sin(yaw[a]);
     const std::size_t p0 = b.face_first_point(fu), p1 = p0 + per - 1;
     // The points sit at the middles of equal segments: extend by half a segment to the face's ends.
-    const Vec2 first = geometry::rotate(b.point_anchor_a(p0), c, s), last = geometry::rotate(b.point_anchor_a(p1), c, s);
+    const Vec2 first = geometry::rotate(b.point_anchor_a(p0), c, s),
+               last = geometry::rotate(b.point_anchor_a(p1), c, s);
     const Vec2 half = (last - first) / (2.0 * static_cast<double>(per - 1));
     const Vec2 e0 = pos[a] + first - half, e1 = pos[a] + last + half;
     const double z = top_of(world, static_cast<int>(a), water_density);  // on the ice's top face
@@ -222,9 +224,9 @@ vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world, double
   vtkNew<vtkCellArray> lines;
   lines->SetData(offsets, iota(2 * n));
   data->SetLines(lines);
-  for (vtkDataArray* a : {static_cast<vtkDataArray*>(intact), static_cast<vtkDataArray*>(points),
-                          static_cast<vtkDataArray*>(normal), static_cast<vtkDataArray*>(shear),
-                          static_cast<vtkDataArray*>(broken)})
+  for (vtkDataArray* a :
+       {static_cast<vtkDataArray*>(intact), static_cast<vtkDataArray*>(points), static_cast<vtkDataArray*>(normal),
+        static_cast<vtkDataArray*>(shear), static_cast<vtkDataArray*>(broken)})
     data->GetCellData()->AddArray(a);
   data->GetCellData()->SetActiveScalars("intact");
   add_time(data, world);
@@ -286,8 +288,6 @@ vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world, dou
 
 }  // namespace
 
-
-
 VtkSeriesWriter::VtkSeriesWriter(const fs::path& dir, bool write_contacts, double water_density,
                                  OutputManifest* manifest)
     : dir_(dir),
@@ -337,7 +337,6 @@ void VtkSeriesWriter::write_frame(const dynamics::World& world) {
   ++frames_;
 }
 
-
 void VtkSeriesWriter::resume(std::span<const double> frame_times, bool bonds) {
   const int frames = static_cast<int>(frame_times.size());
   // The collections first, then the frames they no longer list: a kill between the two leaves unlisted files,
@@ -379,7 +378,8 @@ void VtkImageSeriesWriter::write_frame(double time, std::uint64_t step, std::spa
     auto a = make_array<vtkFloatArray>(f.name.c_str(), out_components, cells);
     float* dst = a->GetPointer(0);
     for (vtkIdType c = 0; c < cells; ++c) {
-      for (int k = 0; k < f.components; ++k) dst[c * out_components + k] = f.values[static_cast<std::size_t>(c * f.components + k)];
+      for (int k = 0; k < f.components; ++k)
+        dst[c * out_components + k] = f.values[static_cast<std::size_t>(c * f.components + k)];
       if (out_components != f.components) dst[c * out_components + 2] = 0.0f;
     }
     image->GetCellData()->AddArray(a);
@@ -390,7 +390,8 @@ void VtkImageSeriesWriter::write_frame(double time, std::uint64_t step, std::spa
   for (vtkIdType c = 0; c < cells; ++c) {
     bool nan = false;
     for (const CellField& f : fields)
-      for (int k = 0; k < f.components; ++k) nan = nan || std::isnan(f.values[static_cast<std::size_t>(c * f.components + k)]);
+      for (int k = 0; k < f.components; ++k)
+        nan = nan || std::isnan(f.values[static_cast<std::size_t>(c * f.components + k)]);
     ghost->SetValue(c, nan ? vtkDataSetAttributes::HIDDENCELL : 0);
   }
   image->GetCellData()->AddArray(ghost);

@@ -18,7 +18,7 @@
 namespace polyfloe::dynamics {
 class World;
 class SpatialWorld;
-}
+}  // namespace polyfloe::dynamics
 
 namespace polyfloe::io {
 

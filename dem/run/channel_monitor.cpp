@@ -22,8 +22,8 @@ ChannelMonitor::ChannelMonitor(const scene::ChannelSpec& spec, const dynamics::W
 
 void ChannelMonitor::restore(const State& s) {
   if (s.through.size() != through_.size())
-    throw std::invalid_argument("channel monitor state for " + std::to_string(s.through.size()) + " bodies, the run has " +
-                                std::to_string(through_.size()));
+    throw std::invalid_argument("channel monitor state for " + std::to_string(s.through.size()) +
+                                " bodies, the run has " + std::to_string(through_.size()));
   through_ = s.through;
   last_time_ = s.last_time;
   last_flow_time_ = s.last_flow_time;
@@ -65,8 +65,10 @@ ChannelSample ChannelMonitor::sample(const dynamics::World& world) {
   if (crossed > 0.0) last_flow_time_ = s.time;
   s.funnel_mean_speed = funnel_floes > 0 ? funnel_speed / funnel_floes : 0.0;
   const bool stalled = funnel_floes > 0 && s.funnel_mean_speed < jam_speed_;
-  if (!stalled) stalled_since_.reset();
-  else if (!stalled_since_) stalled_since_ = s.time;
+  if (!stalled)
+    stalled_since_.reset();
+  else if (!stalled_since_)
+    stalled_since_ = s.time;
   if (stalled) {
     const double spell_start = std::max(last_flow_time_, *stalled_since_);  // no flow since, ice stalled [s]
     s.jammed = s.time - spell_start >= jam_window_;

@@ -33,7 +33,7 @@ class ChannelMonitor {
   // `world` at the start of the run: the state every later sample is compared with.
   ChannelMonitor(const scene::ChannelSpec& spec, const dynamics::World& world);
   ChannelSample sample(const dynamics::World& world);
-  double gate_x() const { return gate_; }                      // [m]
+  double gate_x() const { return gate_; }                       // [m]
   std::optional<double> jam_time() const { return jam_time_; }  // [s]
   double area_passed() const { return passed_; }                // [m^2]
 
@@ -41,7 +41,7 @@ class ChannelMonitor {
   struct State {
     std::vector<std::uint8_t> through;
     double last_time = 0.0, last_flow_time = 0.0, passed = 0.0;  // [s], [s], [m^2]
-    std::optional<double> stalled_since, jam_time;                // [s]
+    std::optional<double> stalled_since, jam_time;               // [s]
   };
   State state() const { return {through_, last_time_, last_flow_time_, passed_, stalled_since_, jam_time_}; }
   // Throws std::invalid_argument if the body count differs.

@@ -78,8 +78,8 @@ std::vector<T> get(const Group& g, const char* name, std::size_t rows, std::size
   if (dims.size() != expected_rank || dims[0] != rows || (width > 1 && dims[1] != width)) {
     std::string shape;
     for (auto x : dims) shape += (shape.empty() ? "" : " x ") + std::to_string(x);
-    throw CheckpointError("checkpoint " + d.where() + ": has shape [" + shape + "], expected [" +
-                          std::to_string(rows) + (width > 1 ? " x " + std::to_string(width) : std::string()) +
+    throw CheckpointError("checkpoint " + d.where() + ": has shape [" + shape + "], expected [" + std::to_string(rows) +
+                          (width > 1 ? " x " + std::to_string(width) : std::string()) +
                           "] (the arrays of one checkpoint must agree)");
   }
   return d.read<T>();
@@ -210,8 +210,7 @@ void write_checkpoint(const fs::path& file, const Checkpoint& c) {
 
 Checkpoint read_checkpoint(const fs::path& file) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    throw CheckpointError("checkpoint " + file.string() + ": no such file");
+  if (!fs::is_regular_file(file, ec)) throw CheckpointError("checkpoint " + file.string() + ": no such file");
   Checkpoint c;
   try {
     const File f(file, File::Mode::read_only);
@@ -234,7 +233,8 @@ Checkpoint read_checkpoint(const fs::path& file) {
     const std::int64_t frames = root.int_attribute("frames");
     if (frames < 0 || static_cast<double>(frames) > scene::OutputSettings::kMaxFrames)
       throw CheckpointError("checkpoint " + file.string() + ": frame count " + std::to_string(frames) +
-                            " is outside [0, " + std::to_string(static_cast<long long>(scene::OutputSettings::kMaxFrames)) + "]");
+                            " is outside [0, " +
+                            std::to_string(static_cast<long long>(scene::OutputSettings::kMaxFrames)) + "]");
     c.frames = static_cast<int>(frames);
     c.frame_times = get<double>(root, "frame_times", static_cast<std::size_t>(c.frames));
     dynamics::WorldState& w = c.world;
@@ -349,13 +349,15 @@ fs::path find_checkpoint(const fs::path& path) {
 void check_restart(const Checkpoint& c, const fs::path& file, const dynamics::World& world) {
   const std::string where = "checkpoint " + file.string() + ": ";
   if (c.kind == "unstable")
-    throw CheckpointError(where + "holds the state at which the run became unstable (for inspection); restart "
+    throw CheckpointError(where +
+                          "holds the state at which the run became unstable (for inspection); restart "
                           "from an earlier checkpoint_NNNNNN.h5 in the same folder, with a smaller time step");
   if (c.kind != "frame" && c.kind != "final") throw CheckpointError(where + "unknown kind '" + c.kind + "'");
   const std::string sig = body_signature(world);
   if (c.body_signature != sig)
-    throw CheckpointError(where + "was written for other bodies than the scene builds (signature " +
-                          c.body_signature + ", the scene's " + sig + ": a different floe field, seed, sheet or "
+    throw CheckpointError(where + "was written for other bodies than the scene builds (signature " + c.body_signature +
+                          ", the scene's " + sig +
+                          ": a different floe field, seed, sheet or "
                           "body list); restart with the scene and --set options of the interrupted run");
   if (c.frames < 1 || c.frame_times.size() != static_cast<std::size_t>(c.frames))
     throw CheckpointError(where + "has no output frame to continue from");
@@ -369,13 +371,16 @@ void check_restart(const Checkpoint& c, const fs::path& file, const dynamics::Wo
   const dynamics::WorldState& w = c.world;
   auto finite = [](const auto& v) {
     return std::all_of(v.begin(), v.end(), [](const auto& x) {
-      if constexpr (std::is_arithmetic_v<std::decay_t<decltype(x)>>) return std::isfinite(x);
-      else return x.allFinite();
+      if constexpr (std::is_arithmetic_v<std::decay_t<decltype(x)>>)
+        return std::isfinite(x);
+      else
+        return x.allFinite();
     });
   };
   if (!finite(w.position) || !finite(w.yaw) || !finite(w.velocity) || !finite(w.omega) || !finite(w.force) ||
       !finite(w.torque))
-    throw CheckpointError(where + "holds a body state that is not finite (NaN or infinite position, velocity or "
+    throw CheckpointError(where +
+                          "holds a body state that is not finite (NaN or infinite position, velocity or "
                           "force); restart from an earlier checkpoint");
   // Beyond 10^10 m the floes' own extent rounds away against their position: no run gets there.
   for (const Vec2& p : w.position)

@@ -45,15 +45,15 @@ class CheckpointError : public std::runtime_error {
 };
 
 struct Checkpoint {
-  std::string kind = "frame";      // "frame": at an output frame (a restart point); "final": at the end of the
-                                   // run; "unstable": where the instability guard stopped it (inspection only)
+  std::string kind = "frame";  // "frame": at an output frame (a restart point); "final": at the end of the
+                               // run; "unstable": where the instability guard stopped it (inspection only)
   std::string code_version;
-  std::string scene_resolved;      // scene::resolved_yaml of the run's scene
-  std::string body_signature;      // body_signature() of the world
-  double dt = 0.0;                 // the run's time step [s]
-  int frames = 0;                  // output frames written (0 .. frames-1)
+  std::string scene_resolved;       // scene::resolved_yaml of the run's scene
+  std::string body_signature;       // body_signature() of the world
+  double dt = 0.0;                  // the run's time step [s]
+  int frames = 0;                   // output frames written (0 .. frames-1)
   std::vector<double> frame_times;  // [frames] [s]
-  double next_frame = 0.0;         // time of the next frame [s]
+  double next_frame = 0.0;          // time of the next frame [s]
   dynamics::WorldState world;
   std::optional<ChannelMonitor::State> channel;
   std::optional<double> next_sample;  // the velocity grid's next sample [s]

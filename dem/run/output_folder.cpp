@@ -30,11 +30,11 @@ const char* const kHint = "; choose another with -o DIR";
 
 // Folders a run must never write into, nor below (the system's own).
 bool is_system_folder(const fs::path& p) {
-  static const char* const below[] = {"/bin",  "/boot", "/dev", "/etc", "/lib",     "/lib32",    "/lib64",
-                                      "/libx32", "/proc", "/sbin", "/sys", "/usr", "/var/log", "/var/spool",
-                                      "/var/mail", "/var/backups"};
-  static const char* const exactly[] = {"/",   "/home",  "/root", "/tmp", "/var",  "/var/tmp", "/var/lib",
-                                        "/var/cache", "/run", "/mnt",  "/media", "/opt", "/srv", "/snap"};
+  static const char* const below[] = {"/bin",     "/boot",      "/dev",      "/etc",        "/lib", "/lib32",
+                                      "/lib64",   "/libx32",    "/proc",     "/sbin",       "/sys", "/usr",
+                                      "/var/log", "/var/spool", "/var/mail", "/var/backups"};
+  static const char* const exactly[] = {"/",          "/home", "/root", "/tmp",   "/var", "/var/tmp", "/var/lib",
+                                        "/var/cache", "/run",  "/mnt",  "/media", "/opt", "/srv",     "/snap"};
   const std::string s = p.string();
   for (const char* e : exactly)
     if (s == e) return true;
@@ -69,8 +69,9 @@ void check_entries(const fs::path& dir, const std::vector<std::string>& listed) 
     const bool folder = name == "floes" || name == "contacts" || name == "bonds" || name == "velocity" ||
                         name == "bodies" || name == "checkpoints";
     if (fs::is_symlink(st))
-      refuse(dir, name + " is a symbolic link: a run writes only inside its output folder and never through "
-                         "links; remove the link");
+      refuse(dir, name +
+                      " is a symbolic link: a run writes only inside its output folder and never through "
+                      "links; remove the link");
     if (folder && !fs::is_directory(st))
       refuse(dir, name + " is not a folder; the run writes its " + name + " frames there: move it away");
     if (!folder && !fs::is_regular_file(st))
@@ -117,10 +118,10 @@ std::string lock_holder(const fs::path& lock) {
 }  // namespace
 
 const std::vector<std::string>& OutputFolder::entries() {
-  static const std::vector<std::string> names{
-      "scene.resolved.yaml", "results.h5",   "floes.pvd", "floes",    "contacts.pvd", "contacts",
-      "bonds.pvd",           "bonds",        "velocity.pvd", "velocity", "bodies.pvd", "bodies",
-      "checkpoints",         kInterruptedResults};
+  static const std::vector<std::string> names{"scene.resolved.yaml", "results.h5",       "floes.pvd",  "floes",
+                                              "contacts.pvd",        "contacts",         "bonds.pvd",  "bonds",
+                                              "velocity.pvd",        "velocity",         "bodies.pvd", "bodies",
+                                              "checkpoints",         kInterruptedResults};
   return names;
 }
 
@@ -131,8 +132,9 @@ fs::path OutputFolder::resolve(const fs::path& requested) {
   if (ec) refuse(requested, ec.message());
   for (const fs::path& part : absolute)
     if (part.string().size() > NAME_MAX)
-      refuse(requested, "the name '" + part.string().substr(0, 40) + "...' has " + std::to_string(part.string().size()) +
-                            " bytes; a folder name has at most " + std::to_string(NAME_MAX));
+      refuse(requested, "the name '" + part.string().substr(0, 40) + "...' has " +
+                            std::to_string(part.string().size()) + " bytes; a folder name has at most " +
+                            std::to_string(NAME_MAX));
   // The existing part of the path, with its links resolved; every part of it must be a folder.
   fs::path existing = absolute, rest;
   while (!fs::exists(fs::symlink_status(existing, ec))) {

@@ -61,9 +61,10 @@ void check_contact_resolution(const dynamics::World& w, double dt) {
   if (r.a >= 0 && r.duration < dynamics::kMinStepsPerContact * dt) {
     why << "the contact between bodies " << w.id(r.a) << " and " << w.id(r.b) << " at t = " << w.time() << " s (step "
         << w.step_count() << ") has an impact speed of about " << r.impact_speed << " m/s, so it lasts " << r.duration
-        << " s: only " << r.duration / dt << " time steps of dt = " << dt << " s (at least " << dynamics::kMinStepsPerContact
-        << " are needed, 40 for accuracy). Set run.reference_speed to " << r.impact_speed
-        << " (the automatic time step then resolves such impacts), or run.dt to " << r.duration / 40.0 << ".";
+        << " s: only " << r.duration / dt << " time steps of dt = " << dt << " s (at least "
+        << dynamics::kMinStepsPerContact << " are needed, 40 for accuracy). Set run.reference_speed to "
+        << r.impact_speed << " (the automatic time step then resolves such impacts), or run.dt to " << r.duration / 40.0
+        << ".";
     throw InstabilityError(why.str());
   }
 }
@@ -88,7 +89,8 @@ void check_stability(const dynamics::World& w, double dt, double reference_speed
   check_contact_resolution(w, dt);
   // Runaway: far faster than anything the forcing or the impacts can produce.
   const double speed_limit = std::max(50.0, 20.0 * reference_speed);
-  const double energy_limit = 0.5 * w.dynamic_mass() * 100.0 * std::max(1.0, reference_speed) * std::max(1.0, reference_speed);
+  const double energy_limit =
+      0.5 * w.dynamic_mass() * 100.0 * std::max(1.0, reference_speed) * std::max(1.0, reference_speed);
   // The World's summary of the step (gathered in its final kick) clears the bodies at once; only a state it
   // cannot clear is searched body by body below, for the body to name (and decides by itself).
   if (const dynamics::World::MotionSummary& s = w.motion_summary();
@@ -136,8 +138,8 @@ void check_stability(const dynamics::World& w, double dt, double reference_speed
   }
   if (energy > energy_limit) {
     why << "the kinetic energy of the ice, " << energy << " J, exceeds " << energy_limit
-        << " J (every floe at 10 x the reference speed; the most energetic is body " << w.id(static_cast<int>(worst_body))
-        << " with " << worst << " J): runaway energy";
+        << " J (every floe at 10 x the reference speed; the most energetic is body "
+        << w.id(static_cast<int>(worst_body)) << " with " << worst << " J): runaway energy";
     advice();
   }
   check_deepest_overlap(w, dt);
@@ -213,7 +215,8 @@ Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const R
   const std::string where = "checkpoint " + restart_file.string() + ": ";
   check_restart(c, restart_file, world_);
   if (output_block(c.scene_resolved) != output_block(scene::resolved_yaml(scene_)))
-    throw CheckpointError(where + "the scene's output settings differ from those of the interrupted run; a restart "
+    throw CheckpointError(where +
+                          "the scene's output settings differ from those of the interrupted run; a restart "
                           "continues its output series, so they must be the same (output.checkpoint may change)");
   const fs::path dir = options_.output_dir;
   std::error_code ec;
@@ -228,14 +231,14 @@ Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const R
         const io::hdf5::File f(previous, io::hdf5::File::Mode::read_only);
         const io::hdf5::Dataset t = f.root().open_dataset("time");
         if (t.rows() < static_cast<std::uint64_t>(frames)) {
-          why += "; " + previous.string() + " has " + std::to_string(t.rows()) + " frames, the checkpoint follows frame " +
-                 std::to_string(frames - 1);
+          why += "; " + previous.string() + " has " + std::to_string(t.rows()) +
+                 " frames, the checkpoint follows frame " + std::to_string(frames - 1);
           continue;
         }
         const std::vector<double> last = t.read_rows<double>(static_cast<std::uint64_t>(frames - 1), 1);
         if (last[0] != c.frame_times.back())
-          throw CheckpointError(where + previous.string() + " has frame " + std::to_string(frames - 1) + " at t = " +
-                                std::to_string(last[0]) + " s, the checkpoint at t = " +
+          throw CheckpointError(where + previous.string() + " has frame " + std::to_string(frames - 1) +
+                                " at t = " + std::to_string(last[0]) + " s, the checkpoint at t = " +
                                 std::to_string(c.frame_times.back()) + " s: they belong to different runs");
         readable_frames(f.root(), static_cast<std::uint64_t>(frames));  // every series, as the copy will read it
         restart_results_ = previous;
@@ -263,8 +266,10 @@ Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const R
   } catch (const std::invalid_argument& e) {
     throw CheckpointError(where + e.what());
   }
-  if (scene_.channel && !c.channel) throw CheckpointError(where + "has no channel monitor state; the scene has a channel");
-  if (grid_geometry_ && !c.next_sample) throw CheckpointError(where + "has no velocity grid state; the scene has a grid");
+  if (scene_.channel && !c.channel)
+    throw CheckpointError(where + "has no channel monitor state; the scene has a channel");
+  if (grid_geometry_ && !c.next_sample)
+    throw CheckpointError(where + "has no velocity grid state; the scene has a grid");
   restart_ = std::move(restart);
 }
 
@@ -297,14 +302,16 @@ RunSummary Simulation::run() {
   std::vector<io::ExtraSeries> extra;
   if (scene_.channel) {
     channel.emplace(*scene_.channel, world_);
-    extra = {{"channel", "area_flux", "m^2/s", "net ice area through the strait entrance since the last frame / time"},
-             {"channel", "area_passed", "m^2", "net ice area through the strait entrance since the start"},
-             {"channel", "upstream_area", "m^2", "ice area with centroids before the strait entrance"},
-             {"channel", "funnel_area", "m^2", "of which in the funnel, waiting to enter the strait"},
-             {"channel", "funnel_mean_speed", "m/s", "mean speed of the floes in the funnel"},
-             {"channel", "strait_floes", "1", "floes with centroids in the strait"},
-             {"channel", "strait_mean_speed", "m/s", "mean speed of the floes in the strait"},
-             {"channel", "jammed", "1", "1 while no ice has passed for channel.jam_window and the funnel's ice is slower than channel.jam_speed"}};
+    extra = {
+        {"channel", "area_flux", "m^2/s", "net ice area through the strait entrance since the last frame / time"},
+        {"channel", "area_passed", "m^2", "net ice area through the strait entrance since the start"},
+        {"channel", "upstream_area", "m^2", "ice area with centroids before the strait entrance"},
+        {"channel", "funnel_area", "m^2", "of which in the funnel, waiting to enter the strait"},
+        {"channel", "funnel_mean_speed", "m/s", "mean speed of the floes in the funnel"},
+        {"channel", "strait_floes", "1", "floes with centroids in the strait"},
+        {"channel", "strait_mean_speed", "m/s", "mean speed of the floes in the strait"},
+        {"channel", "jammed", "1",
+         "1 while no ice has passed for channel.jam_window and the funnel's ice is slower than channel.jam_speed"}};
   }
   fs::path adopt_from;  // a restart: the file the interrupted run's frames are copied from
   if (restart_ && scene_.output.hdf5) {
@@ -335,8 +342,8 @@ RunSummary Simulation::run() {
     extra_values.clear();
     if (channel) {
       const ChannelSample c = channel->sample(world_);
-      extra_values = {c.area_flux, c.area_passed, c.upstream_area, c.funnel_area, c.funnel_mean_speed,
-                      static_cast<double>(c.strait_floes),
+      extra_values = {c.area_flux,         c.area_passed,       c.upstream_area,
+                      c.funnel_area,       c.funnel_mean_speed, static_cast<double>(c.strait_floes),
                       c.strait_mean_speed, c.jammed ? 1.0 : 0.0};
     }
     if (vtk) vtk->write_frame(world_);
@@ -444,8 +451,10 @@ RunSummary Simulation::run() {
         } catch (const CheckpointError&) {
           // none yet: the run failed before its first checkpoint
         }
-        message += last.empty() ? "." : "; to continue with the change above, restart from the last checkpoint: "
-                                        "polyfloe run SCENE --restart " + last.string() + ".";
+        message += last.empty() ? "."
+                                : "; to continue with the change above, restart from the last checkpoint: "
+                                  "polyfloe run SCENE --restart " +
+                                      last.string() + ".";
       } catch (const std::exception& w) {
         message += std::string(" (the state could not be saved: ") + w.what() + ")";
       }

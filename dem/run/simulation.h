@@ -85,7 +85,8 @@ struct FrameClock {
 // Checks the state for NaN/Inf and runaway motion; throws InstabilityError with a suggestion. `dt` is the step in
 // use, `reference_speed` the scene's impact speed [m/s].
 void check_stability(const dynamics::World& world, double dt, double reference_speed);
-// The O(1) part, run every step: the shortest contact in progress must last at least dynamics::kMinStepsPerContact (10) steps (Hertz duration at
+// The O(1) part, run every step: the shortest contact in progress must last at least dynamics::kMinStepsPerContact
+// (10) steps (Hertz duration at
 // the impact speed the contact implies).
 void check_contact_resolution(const dynamics::World& world, double dt);
 

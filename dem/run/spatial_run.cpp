@@ -28,9 +28,9 @@ void check_stability(const dynamics::SpatialWorld& w, double dt) {
   for (const auto& c : w.contacts()) {
     if (c.duration < dynamics::kMinStepsPerContact * dt) {
       std::ostringstream m;
-      m << "the contact of bodies " << w.id(c.a) << " and " << w.id(c.b) << " at t = " << w.time()
-        << " s lasts about " << c.duration << " s, fewer than " << dynamics::kMinStepsPerContact
-        << " steps of dt = " << dt << " s: lower run.dt to " << c.duration / 40.0
+      m << "the contact of bodies " << w.id(c.a) << " and " << w.id(c.b) << " at t = " << w.time() << " s lasts about "
+        << c.duration << " s, fewer than " << dynamics::kMinStepsPerContact << " steps of dt = " << dt
+        << " s: lower run.dt to " << c.duration / 40.0
         << " s or less, or raise run.reference_speed (the automatic step divides the contact duration at that speed)";
       throw InstabilityError(m.str());
     }

@@ -184,7 +184,8 @@ void VelocityGridRecorder::write_frame(const dynamics::World& world) {
   if (vtk_) {
     std::vector<float> speed(f.ice_fraction.size());
     for (std::size_t k = 0; k < speed.size(); ++k) speed[k] = std::hypot(f.velocity[2 * k], f.velocity[2 * k + 1]);
-    const io::CellField fields[] = {{"velocity", 2, f.velocity}, {"speed", 1, speed}, {"ice_fraction", 1, f.ice_fraction}};
+    const io::CellField fields[] = {
+        {"velocity", 2, f.velocity}, {"speed", 1, speed}, {"ice_fraction", 1, f.ice_fraction}};
     vtk_->write_frame(world.time(), world.step_count(), fields);
   }
   if (h5_velocity_) {

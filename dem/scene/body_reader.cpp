@@ -68,8 +68,9 @@ BodySpec read_body(MapReader m) {
       b.polygon = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
       // The same check as a polygon's (an outline that would not read back, or build, is refused here).
       if (const std::string err = geometry::convexity_error(b.polygon); !err.empty())
-        ctx.fail(r.self(), "the rectangle's outline is unusable: " + err +
-                               " (width and height must be within a factor 1e9 of each other, each in [1e-60, 1e60] m)");
+        ctx.fail(r.self(),
+                 "the rectangle's outline is unusable: " + err +
+                     " (width and height must be within a factor 1e9 of each other, each in [1e-60, 1e60] m)");
     }
     r.finish();
   }
@@ -81,8 +82,9 @@ BodySpec read_body(MapReader m) {
     if (c != "body" && c != "world") ctx.fail(*fc, "expected body or world, got " + describe(fc->value));
     world_frame = c == "world";
     if (world_frame && !given_polygon)
-      ctx.fail(*fc, "coordinates: world places a 'polygon' given in scene coordinates; 'regular' and 'rectangle' "
-                    "are centred shapes: give their 'position'");
+      ctx.fail(*fc,
+               "coordinates: world places a 'polygon' given in scene coordinates; 'regular' and 'rectangle' "
+               "are centred shapes: give their 'position'");
     for (const char* k : {"position", "yaw", "yaw_deg"})
       if (world_frame && m.has(k))
         ctx.fail(*fc, std::string("coordinates: world takes the body's place from its polygon: remove '") + k + "'");
@@ -159,8 +161,8 @@ FloeFieldSpec read_floe_field(MapReader m) {
       s.corners_min = static_cast<int>(to_integer(ctx, items[0], 3, hi));
       s.corners_max = static_cast<int>(to_integer(ctx, items[1], 3, hi));
       if (s.corners_max < s.corners_min)
-        ctx.fail(items[1], "max = " + std::to_string(s.corners_max) + " must be >= min = " +
-                               std::to_string(s.corners_min));
+        ctx.fail(items[1],
+                 "max = " + std::to_string(s.corners_max) + " must be >= min = " + std::to_string(s.corners_min));
     } else {
       s.corners_min = s.corners_max = static_cast<int>(to_integer(ctx, *f, 3, hi));
     }
@@ -263,13 +265,15 @@ SpatialBodySpec read_spatial_body(MapReader m) {
     if (auto f = r->take("axis")) b.rotation_axis = to_vec3(c, *f, any("-"));
     if (!(b.rotation_axis.norm() > 0.0) || !std::isfinite(b.rotation_axis.norm()))
       c.fail(r->self(), "rotation.axis must be a finite, non-zero vector");
-    if (r->has("angle") && r->has("angle_deg")) c.fail(r->self(), "give only one of 'angle' [rad] and 'angle_deg' [deg]");
+    if (r->has("angle") && r->has("angle_deg"))
+      c.fail(r->self(), "give only one of 'angle' [rad] and 'angle_deg' [deg]");
     r->number("angle", b.rotation_angle, any("rad"));
     double deg = 0.0;
     if (r->number("angle_deg", deg, any("deg"))) b.rotation_angle = deg * std::numbers::pi / 180.0;
     if (r->has("axis") && !r->has("angle") && !r->has("angle_deg"))
-      c.fail(*r->take("axis"), "a rotation about this axis needs its angle: give rotation.angle [rad] or "
-                               "rotation.angle_deg [deg]");
+      c.fail(*r->take("axis"),
+             "a rotation about this axis needs its angle: give rotation.angle [rad] or "
+             "rotation.angle_deg [deg]");
     r->finish();
   }
   if (auto f = m.take("velocity")) b.velocity = to_vec3(ctx, *f, any("m/s"));
@@ -293,8 +297,9 @@ SpatialSpec read_spatial(MapReader m) {
   s.source.where = ctx.where(m.self());
   if (auto f = m.take("gravity")) s.gravity = to_vec3(ctx, *f, any("m/s^2"));
   if (m.boolean("buoyancy", s.buoyancy) && s.buoyancy && !(s.gravity.norm() > 0.0))
-    ctx.fail(*m.take("buoyancy"), "buoyancy needs gravity (Archimedes' force is the weight of the displaced water): "
-                                  "give spatial.gravity, for example [0, 0, -9.81]");
+    ctx.fail(*m.take("buoyancy"),
+             "buoyancy needs gravity (Archimedes' force is the weight of the displaced water): "
+             "give spatial.gravity, for example [0, 0, -9.81]");
   m.number("water_level", s.water_level, any("m"));
   m.number("water_density", s.water_density, closed(1.0, 1e5, "kg/m^3"));
   m.choice("narrow_phase", s.narrow_phase,
@@ -303,8 +308,7 @@ SpatialSpec read_spatial(MapReader m) {
             {"gjk_epa", dynamics::SpatialNarrowPhase::gjk_epa},
             {"mpr", dynamics::SpatialNarrowPhase::mpr}});
   m.choice("contact_point", s.contact_point,
-           {{"witness", dynamics::ContactPointModel::witness},
-            {"manifold", dynamics::ContactPointModel::manifold}});
+           {{"witness", dynamics::ContactPointModel::witness}, {"manifold", dynamics::ContactPointModel::manifold}});
   if (auto f = m.take("bodies")) {
     if (!f->value.IsNull()) {
       for (const Field& item : list_items(ctx, *f, "a list of bodies (each a block of keys)")) {

@@ -62,10 +62,9 @@ dynamics::SpatialWorld build_spatial_world(const Scene& scene) {
   for (int i = 0; i < static_cast<int>(world.size()); ++i) {
     for (int j = i + 1; j < static_cast<int>(world.size()); ++j) {
       if (world.motion(i) != dynamics::Motion::dynamic && world.motion(j) != dynamics::Motion::dynamic) continue;
-      const auto c = contact::sat_penetration(world.shape(i), world.orientation(i).toRotationMatrix(),
-                                              world.world_vertices(i), world.position(i), world.shape(j),
-                                              world.orientation(j).toRotationMatrix(), world.world_vertices(j),
-                                              world.position(j));
+      const auto c = contact::sat_penetration(
+          world.shape(i), world.orientation(i).toRotationMatrix(), world.world_vertices(i), world.position(i),
+          world.shape(j), world.orientation(j).toRotationMatrix(), world.world_vertices(j), world.position(j));
       if (c.hit) {
         std::ostringstream msg;
         msg << body_where(sp.bodies[static_cast<std::size_t>(i)], static_cast<std::size_t>(i)) << " and "

@@ -62,8 +62,8 @@ bool overlapping(const PlacedBody& a, const PlacedBody& b) {
 // check in list order would report first. Candidates come from the broad phase's grid, so the check stays
 // O(N log N) for any number of bodies; pairs of two fixed bodies are not candidates.
 template <class Counts>
-std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const std::vector<PlacedBody>& bodies,
-                                                                  std::size_t end, Counts counts) {
+std::optional<std::pair<std::size_t, std::size_t>> first_overlap(const std::vector<PlacedBody>& bodies, std::size_t end,
+                                                                 Counts counts) {
   std::vector<geometry::Aabb> boxes(end);
   std::vector<std::uint8_t> dynamic(end);
   for (std::size_t i = 0; i < end; ++i) {
@@ -99,7 +99,7 @@ void add(dynamics::World& world, const BodyDesc& desc, const std::string& source
 
 double reference_speed(const Scene& scene) {
   if (scene.time.reference_speed) return *scene.time.reference_speed;
-  if (scene.spatial) {  // the fastest body at t = 0 (set run.reference_speed when gravity speeds bodies up)
+  if (scene.spatial) {   // the fastest body at t = 0 (set run.reference_speed when gravity speeds bodies up)
     double speed = 1.0;  // [m/s]
     for (const SpatialBodySpec& b : scene.spatial->bodies) speed = std::max(speed, b.velocity.norm());
     return speed;
@@ -197,8 +197,8 @@ void check_bodies_in_water(const dynamics::World& world) {
     try {
       d.ocean->sample(0.0, points, water);
     } catch (const forcing::FieldError& e) {
-      throw SceneError("body " + std::to_string(world.id(i)) + " starts where the ocean field has no water: " +
-                       e.what());
+      throw SceneError("body " + std::to_string(world.id(i)) +
+                       " starts where the ocean field has no water: " + e.what());
     }
   }
 }
@@ -280,7 +280,8 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     const std::string where = scene.channel->source.where.empty() ? "channel" : scene.channel->source.where;
     for (const WallPolygon& wall : channel_walls(*scene.channel)) {
       const std::string source = where + " (channel " + wall.name + ")";
-      add_wall(wall.vertices, source, [&](const PlacedBody& q) { return q.source + ": overlaps " + source + " initially"; });
+      add_wall(wall.vertices, source,
+               [&](const PlacedBody& q) { return q.source + ": overlaps " + source + " initially"; });
     }
   }
 
@@ -313,8 +314,8 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     std::vector<int> index(descs.size());
     for (std::size_t e = 0; e < descs.size(); ++e) {
       const BodyDesc& desc = descs[e];
-      bodies.push_back(placed(where + " (ice_sheet element " + std::to_string(e) + ")", *desc.shape, desc.position,
-                              0.0, true));
+      bodies.push_back(
+          placed(where + " (ice_sheet element " + std::to_string(e) + ")", *desc.shape, desc.position, 0.0, true));
       add(world, desc, where);
       index[e] = world.index_of(desc.id);
     }
@@ -338,9 +339,17 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
         bonds::BondSet set(m);
         for (const SheetFace& f : elements.faces) {
           const BodyDesc &da = descs[static_cast<std::size_t>(f.a)], &db = descs[static_cast<std::size_t>(f.b)];
-          set.add_face({.a = index[static_cast<std::size_t>(f.a)], .b = index[static_cast<std::size_t>(f.b)],
-                        .id_a = da.id, .id_b = db.id, .p0 = f.p0, .p1 = f.p1, .thickness = sheet->thickness,
-                        .centre_a = da.position, .centre_b = db.position, .yaw_a = 0.0, .yaw_b = 0.0});
+          set.add_face({.a = index[static_cast<std::size_t>(f.a)],
+                        .b = index[static_cast<std::size_t>(f.b)],
+                        .id_a = da.id,
+                        .id_b = db.id,
+                        .p0 = f.p0,
+                        .p1 = f.p1,
+                        .thickness = sheet->thickness,
+                        .centre_a = da.position,
+                        .centre_b = db.position,
+                        .yaw_a = 0.0,
+                        .yaw_b = 0.0});
         }
         for (const SheetCorner& c : elements.corners) {
           if (c.faces.empty()) continue;  // a corner on the region's boundary with no face at it
@@ -375,8 +384,8 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     std::sort(order.begin(), order.end());
     for (const auto& [key, k] : order) add(world, field.floes[k], where);
     if (field_report)
-      *field_report = field_statistics(field.floes, field.region_area, scene.floe_field->size_min,
-                                       scene.floe_field->size_max);
+      *field_report =
+          field_statistics(field.floes, field.region_area, scene.floe_field->size_min, scene.floe_field->size_max);
   }
   check_bodies_in_water(world);
   return world;

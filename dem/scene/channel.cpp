@@ -19,8 +19,8 @@ std::optional<SpecIssue> channel_issue(const ChannelSpec& s) {
   const struct {
     const char* key;
     double value;
-  } finite[] = {{"basin_x_min", s.basin_x_min}, {"basin_x_max", s.basin_x_max},   {"basin_y_min", s.basin_y_min},
-                {"basin_y_max", s.basin_y_max}, {"funnel_length", s.funnel_length}, {"opening", s.opening},
+  } finite[] = {{"basin_x_min", s.basin_x_min},     {"basin_x_max", s.basin_x_max},      {"basin_y_min", s.basin_y_min},
+                {"basin_y_max", s.basin_y_max},     {"funnel_length", s.funnel_length},  {"opening", s.opening},
                 {"strait_length", s.strait_length}, {"wall_thickness", s.wall_thickness}};
   // A channel of at most 10,000 km: beyond, the wall polygons leave the range where areas and moments are normal
   // doubles.
@@ -29,11 +29,11 @@ std::optional<SpecIssue> channel_issue(const ChannelSpec& s) {
     if (!(std::abs(f.value) <= kMaxLength))
       return SpecIssue{f.key, number(f.value) + " is outside the allowed range [-1e+07, 1e+07] [m]"};
   if (!(s.basin_x_max > s.basin_x_min))
-    return SpecIssue{"basin_x_max", number(s.basin_x_max) + " must be > basin_x_min = " + number(s.basin_x_min) +
-                                        " [m]"};
+    return SpecIssue{"basin_x_max",
+                     number(s.basin_x_max) + " must be > basin_x_min = " + number(s.basin_x_min) + " [m]"};
   if (!(s.basin_y_max > s.basin_y_min))
-    return SpecIssue{"basin_y_max", number(s.basin_y_max) + " must be > basin_y_min = " + number(s.basin_y_min) +
-                                        " [m]"};
+    return SpecIssue{"basin_y_max",
+                     number(s.basin_y_max) + " must be > basin_y_min = " + number(s.basin_y_min) + " [m]"};
   if (!(s.funnel_length > 0.0)) return SpecIssue{"funnel_length", number(s.funnel_length) + " must be > 0 [m]"};
   if (!(s.strait_length > 0.0)) return SpecIssue{"strait_length", number(s.strait_length) + " must be > 0 [m]"};
   if (!(s.wall_thickness > 0.0)) return SpecIssue{"wall_thickness", number(s.wall_thickness) + " must be > 0 [m]"};

@@ -23,8 +23,9 @@ void log_moments(double alpha, double a, double b, double& mean, double& var) {
     var = w * w / 12.0 * (1.0 - z * z / 60.0);
     return;
   }
-  // For s uniform-tilted on [0, w] with density ~ e^{u s}: E[s] = w / (1 - e^{-z}) - 1/u, computed stably for either sign.
-  const double e = -std::expm1(-z);            // 1 - e^{-z}
+  // For s uniform-tilted on [0, w] with density ~ e^{u s}: E[s] = w / (1 - e^{-z}) - 1/u, computed stably for either
+  // sign.
+  const double e = -std::expm1(-z);  // 1 - e^{-z}
   const double mean_s = w / e - 1.0 / u;
   // Var[s] = 1/u^2 - w^2 e^{-z} / (1 - e^{-z})^2
   const double var_s = 1.0 / (u * u) - w * w * std::exp(-z) / (e * e);

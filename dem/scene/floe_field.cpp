@@ -31,10 +31,10 @@ std::string prefix(const FloeFieldSpec& spec) {
 // A convex polygon prepared for repeated separating-axis tests: unit outward edge normals n_i and offsets
 // d_i = n_i . v_i, so that n_i . x - d_i is the signed distance of x from edge line i.
 struct PreparedPolygon {
-  std::vector<Vec2> v;       // [m]
-  std::vector<Vec2> n;       // [-]
-  std::vector<double> d;     // [m]
-  geometry::Aabb box;        // [m]
+  std::vector<Vec2> v;    // [m]
+  std::vector<Vec2> n;    // [-]
+  std::vector<double> d;  // [m]
+  geometry::Aabb box;     // [m]
 };
 
 PreparedPolygon prepare(std::span<const Vec2> v) {
@@ -167,8 +167,8 @@ class VoronoiShapes {
     }
     if (shapes_.size() < kMinimum) {
       std::ostringstream msg;
-      msg << prefix(spec) << "floe_field.corners: only " << shapes_.size() << " of "
-          << batches * kSitesPerBatch << " Voronoi cells have " << spec.corners_min << " to " << spec.corners_max
+      msg << prefix(spec) << "floe_field.corners: only " << shapes_.size() << " of " << batches * kSitesPerBatch
+          << " Voronoi cells have " << spec.corners_min << " to " << spec.corners_max
           << " corners (a Poisson-Voronoi cell has 6 on average and rarely more than 10); with shape: voronoi use "
              "a range that reaches below 12 corners, or shape: ellipse";
       throw SceneError(msg.str());
@@ -177,7 +177,8 @@ class VoronoiShapes {
 
   // A random outline of the pool, randomly rotated, with the area of a circle of diameter `size` [m].
   std::vector<Vec2> draw(FieldRandom& rng, double size) const {
-    const std::vector<Vec2>& unit = shapes_[static_cast<std::size_t>(rng.uniform_int(0, static_cast<int>(shapes_.size()) - 1))];
+    const std::vector<Vec2>& unit =
+        shapes_[static_cast<std::size_t>(rng.uniform_int(0, static_cast<int>(shapes_.size()) - 1))];
     const double turn = rng.uniform(0.0, 2.0 * std::numbers::pi);
     const double c = std::cos(turn), s = std::sin(turn), scale = std::sqrt(circle_area(size));
     std::vector<Vec2> v;
@@ -269,8 +270,9 @@ std::vector<double> floe_sizes(const FloeFieldSpec& spec, FieldRandom& rng) {
     break;
   }
   std::vector<double> sizes(areas.size());
-  std::transform(areas.begin(), areas.end(), sizes.begin(),
-                 [&](double a) { return std::clamp(std::sqrt(4.0 * a / std::numbers::pi), spec.size_min, spec.size_max); });
+  std::transform(areas.begin(), areas.end(), sizes.begin(), [&](double a) {
+    return std::clamp(std::sqrt(4.0 * a / std::numbers::pi), spec.size_min, spec.size_max);
+  });
   std::sort(sizes.begin(), sizes.end(), std::greater<>());
   return sizes;
 }
@@ -286,7 +288,7 @@ std::vector<Vec2> random_floe_polygon(FieldRandom& rng, int corners, double size
   const double free_angle = two_pi - k * min_gap;  // [rad]
   const double start = rng.uniform(0.0, two_pi);   // where the corners start on the ellipse [rad]
   const double aspect = aspect_max > 1.0 ? rng.uniform(1.0, aspect_max) : 1.0;  // semi-axis ratio [-]
-  const double turn = rng.uniform(0.0, two_pi);    // random orientation of the ellipse [rad]
+  const double turn = rng.uniform(0.0, two_pi);  // random orientation of the ellipse [rad]
   const double ct = std::cos(turn), st = std::sin(turn);
   std::vector<Vec2> v(static_cast<std::size_t>(k));
   for (int i = 0; i < k; ++i) {
@@ -439,8 +441,8 @@ FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamic
     if (!done) {
       std::ostringstream msg;
       msg.precision(4);
-      msg << prefix(spec) << "floe_field: could not place floe " << f + 1 << " of " << sizes.size() << " (size "
-          << size << " m) after " << spec.max_attempts << " attempts; the concentration reached is "
+      msg << prefix(spec) << "floe_field: could not place floe " << f + 1 << " of " << sizes.size() << " (size " << size
+          << " m) after " << spec.max_attempts << " attempts; the concentration reached is "
           << field.ice_area / field.region_area << " of the target " << spec.concentration
           << "; lower floe_field.concentration (or widen floe_field.size)";
       throw SceneError(msg.str());

@@ -31,9 +31,9 @@ namespace polyfloe::scene {
 class FieldRandom {
  public:
   explicit FieldRandom(std::uint64_t seed) : engine_(seed) {}
-  double uniform();                        // [0, 1), 53 random bits
-  double uniform(double lo, double hi);    // [lo, hi)
-  int uniform_int(int lo, int hi);         // [lo, hi], inclusive, unbiased (rejection)
+  double uniform();                      // [0, 1), 53 random bits
+  double uniform(double lo, double hi);  // [lo, hi)
+  int uniform_int(int lo, int hi);       // [lo, hi], inclusive, unbiased (rejection)
 
  private:
   std::mt19937_64 engine_;

@@ -58,15 +58,16 @@ void read_file_field(MapReader& m, forcing::FieldSpec& s) {
   const bool has_time = m.has("outside");
   read_time_boundary(m, s);
   if (s.grid->t.size() > 1 && !has_time)
-    ctx.fail(m.self(), "the field file has " + std::to_string(s.grid->t.size()) + " snapshots (" + fmt(s.grid->t.front()) +
-                           " to " + fmt(s.grid->t.back()) +
+    ctx.fail(m.self(), "the field file has " + std::to_string(s.grid->t.size()) + " snapshots (" +
+                           fmt(s.grid->t.front()) + " to " + fmt(s.grid->t.back()) +
                            " s): say what the field does beyond them with 'outside' (clamp, cyclic or error)");
-  m.choice("no_water", s.no_water, {{"error", forcing::OutsideWater::error}, {"velocity", forcing::OutsideWater::velocity}});
+  m.choice("no_water", s.no_water,
+           {{"error", forcing::OutsideWater::error}, {"velocity", forcing::OutsideWater::velocity}});
   const bool has_velocity = m.vec2("no_water_velocity", s.no_water_velocity, "m/s");
   if (s.no_water == forcing::OutsideWater::velocity && !has_velocity)
     ctx.fail(m.self(), "no_water: velocity needs no_water_velocity: [u, v] [m/s]");
-  m.vec2("offset", s.offset, "m");                     // where the file's (0, 0) lies in the scene
-  m.number("time_offset", s.time_offset, any("s"));    // scene time 0 is the file's time_offset
+  m.vec2("offset", s.offset, "m");                   // where the file's (0, 0) lies in the scene
+  m.number("time_offset", s.time_offset, any("s"));  // scene time 0 is the file's time_offset
   m.choice("land", s.land_walls, {{"none", false}, {"walls", true}});
 }
 
@@ -102,7 +103,8 @@ forcing::FieldSpec read_field(MapReader m) {
       m.vec2("centre", s.origin, "m");
       const auto fr = m.take("core_radius");
       const auto fv = m.take("max_speed");
-      if (!fr || !fv) ctx.fail(m.self(), std::string("missing required key '") + (fr ? "max_speed" : "core_radius") + "'");
+      if (!fr || !fv)
+        ctx.fail(m.self(), std::string("missing required key '") + (fr ? "max_speed" : "core_radius") + "'");
       s.core_radius = to_number(ctx, *fr, positive("m"));
       s.max_speed = to_number(ctx, *fv, any("m/s"));
       m.vec2("velocity", s.velocity, "m/s");
@@ -201,7 +203,8 @@ void check_forcing(const Context& ctx, const Field& root, const Scene& s) {
     // Point at whichever of the two densities the scene gave (ice.density first); const lookups never throw.
     const YAML::Node& tree = root.value;
     Field where{YAML::Node(), YAML::Node(), "ice.density"};
-    for (const auto& [block, sub, path] : {std::tuple{"ice", "", "ice.density"}, {"forcing", "ocean", "forcing.ocean.density"}}) {
+    for (const auto& [block, sub, path] :
+         {std::tuple{"ice", "", "ice.density"}, {"forcing", "ocean", "forcing.ocean.density"}}) {
       // (a missing key yields an invalid node: only IsDefined() may be asked of it)
       auto child = [](const YAML::Node& m, const char* key) {
         return m.IsDefined() && m.IsMap() ? m[key] : YAML::Node();  // (a default Node is defined and null)
@@ -215,9 +218,9 @@ void check_forcing(const Context& ctx, const Field& root, const Scene& s) {
         break;
       }
     }
-    ctx.fail(where,
-             "ice density " + fmt(s.ice_density) + " kg/m^3 must be below the water density forcing.ocean.density = " +
-                 fmt(d.water_density) + " kg/m^3, or the floes would sink");
+    ctx.fail(where, "ice density " + fmt(s.ice_density) +
+                        " kg/m^3 must be below the water density forcing.ocean.density = " + fmt(d.water_density) +
+                        " kg/m^3, or the floes would sink");
   }
   const std::pair<const forcing::FieldSpec*, const char*> fields[] = {{&s.ocean_field, "forcing.ocean.field"},
                                                                       {&s.wind_field, "forcing.air.field"}};
@@ -229,12 +232,13 @@ void check_forcing(const Context& ctx, const Field& root, const Scene& s) {
     const std::vector<double>& t = series ? f->times : f->grid->t;
     const double shift = series ? 0.0 : f->time_offset;  // the run's [0, duration] is the file's [shift, ...]
     if (t.front() > shift || t.back() < s.time.duration + shift)
-      throw SceneError(ctx.file() + ": key '" + std::string(path) + (series ? ".times': the series" : ".path': the file's snapshots") +
-                       " cover" + (series ? "s" : "") + " [" + fmt(t.front()) + ", " + fmt(t.back()) +
-                       "] s but the run spans [" + fmt(shift) + ", " + fmt(s.time.duration + shift) + "] s" +
+      throw SceneError(ctx.file() + ": key '" + std::string(path) +
+                       (series ? ".times': the series" : ".path': the file's snapshots") + " cover" +
+                       (series ? "s" : "") + " [" + fmt(t.front()) + ", " + fmt(t.back()) + "] s but the run spans [" +
+                       fmt(shift) + ", " + fmt(s.time.duration + shift) + "] s" +
                        (shift != 0.0 ? " of the file's time (time_offset " + fmt(shift) + " s)" : "") +
-                       " with outside: error; " +
-                       (series ? "extend the series" : "import more snapshots") + " or choose clamp or cyclic");
+                       " with outside: error; " + (series ? "extend the series" : "import more snapshots") +
+                       " or choose clamp or cyclic");
   }
 }
 

@@ -49,7 +49,8 @@ void collapse_short_edges(std::vector<std::vector<Vec2>>& cells, const geometry:
   for (const auto& c : cell_ids) {
     for (std::size_t j = 0; j < c.size(); ++j) {
       const int a = c[j], b = c[(j + 1) % c.size()];
-      if (a < b) edges.push_back({(pos[static_cast<std::size_t>(a)] - pos[static_cast<std::size_t>(b)]).norm(), {a, b}});
+      if (a < b)
+        edges.push_back({(pos[static_cast<std::size_t>(a)] - pos[static_cast<std::size_t>(b)]).norm(), {a, b}});
     }
   }
   std::sort(edges.begin(), edges.end());
@@ -60,9 +61,9 @@ void collapse_short_edges(std::vector<std::vector<Vec2>>& cells, const geometry:
     if (!alive[static_cast<std::size_t>(a)] || !alive[static_cast<std::size_t>(b)]) continue;
     const bool ba = on_boundary(a), bb = on_boundary(b);
     if (ba && bb) continue;
-    const Vec2 target = ba ? pos[static_cast<std::size_t>(a)]
-                           : bb ? pos[static_cast<std::size_t>(b)]
-                                : 0.5 * (pos[static_cast<std::size_t>(a)] + pos[static_cast<std::size_t>(b)]);
+    const Vec2 target = ba   ? pos[static_cast<std::size_t>(a)]
+                        : bb ? pos[static_cast<std::size_t>(b)]
+                             : 0.5 * (pos[static_cast<std::size_t>(a)] + pos[static_cast<std::size_t>(b)]);
     if ((pos[static_cast<std::size_t>(a)] - pos[static_cast<std::size_t>(b)]).norm() >= shortest) continue;
     // Every cell with a or b, rebuilt with b merged into a at the target: all must stay strictly convex.
     std::vector<int> touched = vertex_cells[static_cast<std::size_t>(a)];
@@ -198,7 +199,8 @@ std::vector<dynamics::BodyDesc> ice_sheet_bodies(const IceSheetSpec& spec, doubl
   for (std::size_t i = 0; i < cells.size(); ++i) {
     dynamics::BodyDesc d;
     Vec2 centre{0.0, 0.0};
-    d.shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(cells[i], &centre));
+    d.shape =
+        std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(cells[i], &centre));
     d.id = first_id + i;
     d.position = centre;
     d.velocity = spec.velocity;

@@ -103,15 +103,13 @@ std::string resolved_yaml(const Scene& s) {
   o << "contact:\n"
     << "  restitution: " << fmt(c.restitution) << "  # [-]\n"
     << "  friction: " << fmt(c.friction) << "  # [-] Coulomb coefficient\n"
-    << "  damping_model: "
-    << (c.damping == contact::DampingModel::paper ? "paper" : "speed_independent") << "\n"
+    << "  damping_model: " << (c.damping == contact::DampingModel::paper ? "paper" : "speed_independent") << "\n"
     << "  narrow_phase: " << (s.world.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa ? "gjk_epa" : "exact")
     << "  # level floes: exact overlap polygon, or the paper's GJK-EPA (comparison)\n"
     << "  force_model: " << contact::force_model_name(c.force_model) << "\n"
-    << "  broad_phase_cell: "
-    << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto")) << "  # [m]\n"
-    << "  broad_phase_skin: "
-    << (s.world.broad_phase_skin > 0.0 ? fmt(s.world.broad_phase_skin) : std::string("auto"))
+    << "  broad_phase_cell: " << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto"))
+    << "  # [m]\n"
+    << "  broad_phase_skin: " << (s.world.broad_phase_skin > 0.0 ? fmt(s.world.broad_phase_skin) : std::string("auto"))
     << "  # [m] speed only: the contacts are the same for any value\n";
   if (!s.spatial) {  // spatial scenes have neither drift forcing nor floes
     const forcing::DriftSettings& d = s.world.drift;
@@ -134,8 +132,10 @@ std::string resolved_yaml(const Scene& s) {
       << "    drag: " << term(d.air_drag, d.air_drag_coefficient) << "  # c_a [-]\n"
       << "  coriolis: {enabled: " << on(d.coriolis) << ", latitude: " << fmt(d.latitude)
       << ", beta_plane: " << on(d.beta_plane) << ", reference_y: " << fmt(d.reference_y) << "}  # [deg], [m]\n";
-    if (s.bodies.empty()) o << "floes: []\n";
-    else o << "floes:\n";
+    if (s.bodies.empty())
+      o << "floes: []\n";
+    else
+      o << "floes:\n";
     for (const BodySpec& b : s.bodies) {
       o << "  - polygon: [";
       for (std::size_t i = 0; i < b.polygon.size(); ++i) o << (i ? ", " : "") << fmt(b.polygon[i]);
@@ -168,8 +168,8 @@ std::string resolved_yaml(const Scene& s) {
   }
   if (const auto& sh = s.ice_sheet) {
     o << "ice_sheet:\n"
-      << "  region: [" << fmt(sh->region_min.x()) << ", " << fmt(sh->region_min.y()) << ", "
-      << fmt(sh->region_max.x()) << ", " << fmt(sh->region_max.y()) << "]  # [m] xmin, ymin, xmax, ymax\n"
+      << "  region: [" << fmt(sh->region_min.x()) << ", " << fmt(sh->region_min.y()) << ", " << fmt(sh->region_max.x())
+      << ", " << fmt(sh->region_max.y()) << "]  # [m] xmin, ymin, xmax, ymax\n"
       << "  cell_size: " << fmt(sh->cell_size) << "  # [m] diameter of the circle of the mean cell area\n"
       << "  relaxation: " << sh->relaxation << "  # [-] Lloyd iterations\n"
       << "  thickness: " << fmt(sh->thickness) << "  # [m]\n"
@@ -193,8 +193,8 @@ std::string resolved_yaml(const Scene& s) {
       << "  water_level: " << fmt(sp->water_level) << "  # [m]\n"
       << "  water_density: " << fmt(sp->water_density) << "  # [kg/m^3]\n"
       << "  narrow_phase: " << dynamics::to_string(sp->narrow_phase) << "\n"
-      << "  contact_point: "
-      << (sp->contact_point == dynamics::ContactPointModel::manifold ? "manifold" : "witness") << "\n";
+      << "  contact_point: " << (sp->contact_point == dynamics::ContactPointModel::manifold ? "manifold" : "witness")
+      << "\n";
     o << (sp->bodies.empty() ? "  bodies: []\n" : "  bodies:\n");
     for (const SpatialBodySpec& b : sp->bodies) {
       if (b.box) {

@@ -28,8 +28,8 @@ class SceneError : public std::runtime_error {
 };
 
 struct TimeSettings {
-  double duration = 300.0;            // simulated time [s], > 0
-  std::optional<double> dt;           // fixed time step [s]; empty = automatic
+  double duration = 300.0;          // simulated time [s], > 0
+  std::optional<double> dt;         // fixed time step [s]; empty = automatic
   double steps_per_contact = 40.0;  // auto dt = shortest contact duration / this [-], >= dynamics::kMinStepsPerContact
   std::optional<double> reference_speed;  // impact speed for the automatic dt and the paper damping [m/s];
                                           // empty = max(1 m/s, steady free-drift speed)
@@ -38,11 +38,11 @@ struct TimeSettings {
 // Ice velocity averaged on a grid of cells over each output interval (run/velocity_grid.h), written to results.h5
 // (/diagnostics/velocity_grid) and as VTK image data (velocity.pvd, velocity/velocity_NNNNNN.vti).
 struct VelocityGridSettings {
-  static constexpr double kMaxCells = 4.0e6;     // a larger grid is refused (memory, file size)
+  static constexpr double kMaxCells = 4.0e6;  // a larger grid is refused (memory, file size)
   bool enabled = false;
-  double cell = 10.0;                            // cell size [m], > 0
-  std::optional<std::array<double, 4>> region;   // [m] xmin, ymin, xmax, ymax; empty = auto: every body at t = 0
-  int samples_per_frame = 10;                    // samples per output interval, evenly spaced [-], 1..1000
+  double cell = 10.0;                           // cell size [m], > 0
+  std::optional<std::array<double, 4>> region;  // [m] xmin, ymin, xmax, ymax; empty = auto: every body at t = 0
+  int samples_per_frame = 10;                   // samples per output interval, evenly spaced [-], 1..1000
 };
 
 // Checkpoints (run/checkpoint.h): the full state at an output frame, DIR/checkpoints/checkpoint_NNNNNN.h5 (NNNNNN =
@@ -57,10 +57,10 @@ struct OutputSettings {
   // Frames a run may write (a frame per interval, at most one per step): each is a file per series, so a typo in
   // the interval's unit would otherwise fill the disk.
   static constexpr double kMaxFrames = 1.0e6;
-  double interval = 5.0;      // simulated time between frames [s], > 0
-  bool vtk = true;            // VTK .vtp frames + .pvd series
-  bool contacts = true;       // contact series (.vtp + .pvd) alongside the floes
-  bool hdf5 = true;           // results.h5
+  double interval = 5.0;  // simulated time between frames [s], > 0
+  bool vtk = true;        // VTK .vtp frames + .pvd series
+  bool contacts = true;   // contact series (.vtp + .pvd) alongside the floes
+  bool hdf5 = true;       // results.h5
   VelocityGridSettings velocity_grid;
   CheckpointSettings checkpoint;
 };
@@ -75,9 +75,9 @@ struct BodySpec {
   double thickness = 1.0;         // [m]
   dynamics::Motion motion = dynamics::Motion::dynamic;
   std::optional<std::uint64_t> id;  // stable id; empty = next free
-  Vec2 external_force{0.0, 0.0};  // constant load at the centroid [N]
-  double external_torque = 0.0;   // constant torque about z [N m]
-  SourceRef source;               // for error messages
+  Vec2 external_force{0.0, 0.0};    // constant load at the centroid [N]
+  double external_torque = 0.0;     // constant torque about z [N m]
+  SourceRef source;                 // for error messages
 };
 
 // How a generated floe's outline is made (scene/floe_field.h).
@@ -94,28 +94,28 @@ struct FloeFieldSpec {
   // kAttemptsPerFloe per floe (a field that fills in time takes a few tries per floe; seconds of tries in all).
   static constexpr double kBaseAttempts = 1e7;
   static constexpr double kAttemptsPerFloe = 200.0;
-  Vec2 region_min{0.0, 0.0};   // [m]
+  Vec2 region_min{0.0, 0.0};        // [m]
   Vec2 region_max{1000.0, 1000.0};  // [m]
-  double concentration = 0.5;  // ice area / region area [-], (0, 0.7]
-  double size_min = 5.0;       // floe size a: diameter of the area-equivalent circle [m]
-  double size_max = 100.0;     // floe size b [m]
-  double exponent = 2.0;       // power-law exponent alpha of the size pdf f(x) = c x^-alpha (Eq. 15-16) [-]
-  int corners_min = 5;         // corners per floe, drawn uniformly in [min, max]
+  double concentration = 0.5;       // ice area / region area [-], (0, 0.7]
+  double size_min = 5.0;            // floe size a: diameter of the area-equivalent circle [m]
+  double size_max = 100.0;          // floe size b [m]
+  double exponent = 2.0;            // power-law exponent alpha of the size pdf f(x) = c x^-alpha (Eq. 15-16) [-]
+  int corners_min = 5;              // corners per floe, drawn uniformly in [min, max]
   int corners_max = 10;
   FloeShape shape = FloeShape::ellipse;
-  double aspect_max = 2.5;     // ellipse shapes: semi-axis ratio uniform in [1, aspect_max] [-], [1, 10]
-  double thickness = 1.0;      // [m]
-  Vec2 velocity{0.0, 0.0};     // initial velocity [m/s]
+  double aspect_max = 2.5;  // ellipse shapes: semi-axis ratio uniform in [1, aspect_max] [-], [1, 10]
+  double thickness = 1.0;   // [m]
+  Vec2 velocity{0.0, 0.0};  // initial velocity [m/s]
   std::uint64_t seed = 1;
-  int max_attempts = 20000;    // random placement tries per floe before giving up [-]
+  int max_attempts = 20000;  // random placement tries per floe before giving up [-]
   SourceRef source;
 };
 
 // A straight-walled funnel and strait downstream (+x) of the ice region, as fixed wall polygons.
 struct ChannelSpec {
-  double basin_x_min = -100.0;   // upstream end of the basin walls [m]
-  double basin_x_max = 1100.0;   // where the funnel starts [m]
-  double basin_y_min = 0.0;      // basin wall lines [m]
+  double basin_x_min = -100.0;  // upstream end of the basin walls [m]
+  double basin_x_max = 1100.0;  // where the funnel starts [m]
+  double basin_y_min = 0.0;     // basin wall lines [m]
   double basin_y_max = 1000.0;
   double funnel_length = 300.0;  // along x [m]
   double opening = 250.0;        // strait width [m]
@@ -143,12 +143,12 @@ enum class SheetElements {
 };
 
 struct IceSheetSpec {
-  Vec2 region_min{0.0, 0.0};       // [m]
-  Vec2 region_max{100.0, 100.0};   // [m]
-  double cell_size = 10.0;         // mean cell size: diameter of the circle of the mean cell area [m], > 0
-  int relaxation = 0;              // Lloyd iterations: 0 = Poisson-Voronoi cells, more = rounder, more even [-]
-  double thickness = 1.0;          // [m]
-  Vec2 velocity{0.0, 0.0};         // initial velocity [m/s]
+  Vec2 region_min{0.0, 0.0};      // [m]
+  Vec2 region_max{100.0, 100.0};  // [m]
+  double cell_size = 10.0;        // mean cell size: diameter of the circle of the mean cell area [m], > 0
+  int relaxation = 0;             // Lloyd iterations: 0 = Poisson-Voronoi cells, more = rounder, more even [-]
+  double thickness = 1.0;         // [m]
+  Vec2 velocity{0.0, 0.0};        // initial velocity [m/s]
   std::uint64_t seed = 1;
   SheetElements elements = SheetElements::cells;
   std::optional<SheetBondSpec> bonds;  // empty: unbonded (broken ice)
@@ -159,17 +159,17 @@ struct IceSheetSpec {
 
 // A rigid convex body of a spatial scene (dynamics/spatial_world.h): a box, or a polygon extruded to a thickness.
 struct SpatialBodySpec {
-  std::optional<geometry::Vec3> box;  // edge lengths (lx, ly, lz) [m], each > 0
-  std::vector<Vec2> polygon;          // or a prism: the outline in the body frame [m] ...
-  double thickness = 1.0;             // ... extruded to this thickness, centred on z = 0 [m]
-  geometry::Vec3 position{0.0, 0.0, 0.0};      // centroid [m]
-  geometry::Vec3 rotation_axis{0.0, 0.0, 1.0}; // initial orientation: a turn about this axis (any length > 0) ...
-  double rotation_angle = 0.0;                 // ... by this angle [rad]
+  std::optional<geometry::Vec3> box;               // edge lengths (lx, ly, lz) [m], each > 0
+  std::vector<Vec2> polygon;                       // or a prism: the outline in the body frame [m] ...
+  double thickness = 1.0;                          // ... extruded to this thickness, centred on z = 0 [m]
+  geometry::Vec3 position{0.0, 0.0, 0.0};          // centroid [m]
+  geometry::Vec3 rotation_axis{0.0, 0.0, 1.0};     // initial orientation: a turn about this axis (any length > 0) ...
+  double rotation_angle = 0.0;                     // ... by this angle [rad]
   geometry::Vec3 velocity{0.0, 0.0, 0.0};          // [m/s]
   geometry::Vec3 angular_velocity{0.0, 0.0, 0.0};  // world frame [rad/s]
-  std::optional<double> density;      // [kg/m^3]; empty = ice.density
+  std::optional<double> density;                   // [kg/m^3]; empty = ice.density
   dynamics::Motion motion = dynamics::Motion::dynamic;
-  std::optional<std::uint64_t> id;    // stable id; empty = next free
+  std::optional<std::uint64_t> id;  // stable id; empty = next free
   SourceRef source;
 };
 // A spatial scene: 6-DOF polyhedra instead of level floes (no drift forcing, no floe fields).
@@ -185,13 +185,13 @@ struct SpatialSpec {
 };
 struct Scene {
   std::string name = "scene";
-  std::string source_path;  // the YAML file
-  std::string source_text;  // its text (stored in the HDF5 output)
+  std::string source_path;             // the YAML file
+  std::string source_text;             // its text (stored in the HDF5 output)
   std::vector<std::string> overrides;  // the --set arguments applied
   TimeSettings time;
   OutputSettings output;
-  double ice_density = 920.0;  // [kg/m^3]
-  dynamics::WorldSettings world;  // contact law + drift forcing + broad phase
+  double ice_density = 920.0;      // [kg/m^3]
+  dynamics::WorldSettings world;   // contact law + drift forcing + broad phase
   forcing::FieldSpec ocean_field;  // what world.drift.ocean was built from (default: still water)
   forcing::FieldSpec wind_field;   // what world.drift.wind was built from (default: calm)
   std::vector<BodySpec> bodies;

@@ -36,7 +36,6 @@ namespace {
 
 using namespace detail;
 
-
 // ---------------------------------------------------------------------------------------------------------------
 // The schema, one block per function
 
@@ -53,17 +52,20 @@ void read_velocity_grid(MapReader m, VelocityGridSettings& g) {
   m.boolean("enabled", g.enabled);
   m.number("cell", g.cell, positive("m"));
   if (auto f = m.take("region")) {
-    if (is_word(f->value, "auto")) g.region.reset();
-    else g.region = to_box(ctx, *f);
+    if (is_word(f->value, "auto"))
+      g.region.reset();
+    else
+      g.region = to_box(ctx, *f);
   }
   m.integer("samples_per_frame", g.samples_per_frame, 1, 1000);
   if (g.region) {  // the automatic region is checked when the world is built
-    const double cells = std::ceil(((*g.region)[2] - (*g.region)[0]) / g.cell) *
-                         std::ceil(((*g.region)[3] - (*g.region)[1]) / g.cell);
+    const double cells =
+        std::ceil(((*g.region)[2] - (*g.region)[0]) / g.cell) * std::ceil(((*g.region)[3] - (*g.region)[1]) / g.cell);
     if (cells > VelocityGridSettings::kMaxCells) {
       const auto f = m.take("cell");
       ctx.fail(f ? *f : m.self(), "the velocity grid would have " + fmt(cells) + " cells (at most " +
-                                      fmt(VelocityGridSettings::kMaxCells) + "): raise output.velocity_grid.cell or shrink its region");
+                                      fmt(VelocityGridSettings::kMaxCells) +
+                                      "): raise output.velocity_grid.cell or shrink its region");
     }
   }
   m.finish();
@@ -96,18 +98,19 @@ void read_contact(MapReader m, dynamics::WorldSettings& w) {
   m.number("restitution", w.contact.restitution, Range{0.0, 1.0, true, false, "-"});
   m.number("friction", w.contact.friction, closed(0.0, 10.0, "-"));
   m.choice("damping_model", w.contact.damping,
-           {{"speed_independent", contact::DampingModel::speed_independent},
-            {"paper", contact::DampingModel::paper}});
+           {{"speed_independent", contact::DampingModel::speed_independent}, {"paper", contact::DampingModel::paper}});
   m.choice("narrow_phase", w.narrow_phase,
            {{"exact", dynamics::PlanarNarrowPhase::exact}, {"gjk_epa", dynamics::PlanarNarrowPhase::gjk_epa}});
   m.choice("force_model", w.contact.force_model,
            {{"centroid", contact::ForceModel::centroid},
             {"gradient", contact::ForceModel::gradient},
             {"foundation", contact::ForceModel::foundation}});
-  if (w.contact.force_model == contact::ForceModel::foundation && w.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa) {
+  if (w.contact.force_model == contact::ForceModel::foundation &&
+      w.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa) {
     const auto f = m.take("narrow_phase");
-    m.context().fail(f ? *f : m.self(), "force_model 'foundation' integrates over the overlap polygon, which only "
-                                        "the 'exact' narrow phase finds: set narrow_phase: exact, or another force_model");
+    m.context().fail(f ? *f : m.self(),
+                     "force_model 'foundation' integrates over the overlap polygon, which only "
+                     "the 'exact' narrow phase finds: set narrow_phase: exact, or another force_model");
   }
   std::optional<double> cell;
   if (w.broad_phase_cell > 0.0) cell = w.broad_phase_cell;
@@ -137,11 +140,17 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   top.finish();
   if (s.spatial) {
     // Spatial scenes have polyhedra, gravity and buoyancy; level-floe content would be silently ignored.
-    const char* planar_only = !s.bodies.empty() ? "floes" : s.floe_field ? "floe_field" : s.ice_sheet ? "ice_sheet"
-                              : s.channel ? "channel" : has_forcing ? "forcing" : nullptr;
+    const char* planar_only = !s.bodies.empty() ? "floes"
+                              : s.floe_field    ? "floe_field"
+                              : s.ice_sheet     ? "ice_sheet"
+                              : s.channel       ? "channel"
+                              : has_forcing     ? "forcing"
+                                                : nullptr;
     if (planar_only)
-      throw SceneError(s.spatial->source.where + ": a spatial scene takes its bodies from 'spatial.bodies' and has "
-                       "no drift forcing: remove '" + planar_only + "' (or remove 'spatial' for a planar scene)");
+      throw SceneError(s.spatial->source.where +
+                       ": a spatial scene takes its bodies from 'spatial.bodies' and has "
+                       "no drift forcing: remove '" +
+                       planar_only + "' (or remove 'spatial' for a planar scene)");
     return;
   }
   check_forcing(ctx, top.self(), s);
@@ -149,8 +158,9 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   const bool dynamic_body = std::any_of(s.bodies.begin(), s.bodies.end(),
                                         [](const BodySpec& b) { return b.motion == dynamics::Motion::dynamic; });
   if (!dynamic_body && !s.floe_field && !s.ice_sheet) {
-    throw SceneError(ctx.file() + ":1:1: the scene has no dynamic body: list floes under 'floes' (motion: dynamic) "
-                                  "or generate them with 'floe_field' or 'ice_sheet'");
+    throw SceneError(ctx.file() +
+                     ":1:1: the scene has no dynamic body: list floes under 'floes' (motion: dynamic) "
+                     "or generate them with 'floe_field' or 'ice_sheet'");
   }
 }
 
@@ -158,7 +168,8 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
 // Overrides
 
 bool is_index(const std::string& s) {
-  return !s.empty() && s.size() < 10 && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+  return !s.empty() && s.size() < 10 &&
+         std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
 }
 
 // Sets the value at keys[i..] below `node` (whose path is `path`), creating missing blocks.
@@ -238,9 +249,12 @@ std::optional<YAML::Mark> unclosed_quote(const std::string& text, const YAML::No
     const char q = text[static_cast<std::size_t>(pos)];
     if (q != '"' && q != '\'') return std::nullopt;
     for (std::size_t i = static_cast<std::size_t>(pos) + 1; i < text.size(); ++i) {
-      if (q == '"' && text[i] == '\\') ++i;                       // an escape: skip the escaped character
-      else if (q == '\'' && text.compare(i, 2, "''") == 0) ++i;  // '' is a quote inside a single-quoted string
-      else if (text[i] == q) return std::nullopt;
+      if (q == '"' && text[i] == '\\')
+        ++i;  // an escape: skip the escaped character
+      else if (q == '\'' && text.compare(i, 2, "''") == 0)
+        ++i;  // '' is a quote inside a single-quoted string
+      else if (text[i] == q)
+        return std::nullopt;
     }
     return n.Mark();
   }

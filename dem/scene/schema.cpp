@@ -26,7 +26,6 @@ std::string describe(const YAML::Node& n) {
   return "'" + excerpt(n.Scalar()) + "'";
 }
 
-
 // ---------------------------------------------------------------------------------------------------------------
 // Typed values
 
@@ -36,7 +35,6 @@ bool non_finite_spelling(const std::string& s) {
   std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return t == ".nan" || t == ".inf" || t == "nan" || t == "inf" || t == "infinity";
 }
-
 
 // Reads a plain YAML scalar as a double: decimal or exponent notation, optional sign; .nan/.inf are non-finite.
 NumberText parse_double(const std::string& s, double& x) {

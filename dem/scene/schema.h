@@ -27,15 +27,14 @@ struct Range {
   double lo = -kInf, hi = kInf;
   bool lo_open = true, hi_open = true;
   const char* unit = "-";
-  bool contains(double x) const {
-    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-  }
+  bool contains(double x) const { return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi); }
   std::string text() const {
     return std::string(lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]") + " [" + unit + "]";
   }
 };
 // Any value a physical quantity of the unit can take: speeds (and rates) within 1 km/s (1,000 rad/s, 1,000 m/s^2)
-// positions within 10^9 m and angles within 10^6 rad (10^8 deg), so that no product of user numbers in the models overflows and a run cannot blow up
+// positions within 10^9 m and angles within 10^6 rad (10^8 deg), so that no product of user numbers in the models
+// overflows and a run cannot blow up
 // for a reason other than the number given; other units are not bounded.
 inline double physical_cap(const char* unit) {
   const std::string_view u(unit);
@@ -91,7 +90,6 @@ class Context {
   std::map<std::string, std::string> origin_;  // tree path -> the --set key that wrote or created it
 };
 
-
 // ---------------------------------------------------------------------------------------------------------------
 // Typed values: each reads one node or fails naming where it is and what is allowed.
 
@@ -117,7 +115,6 @@ std::vector<Field> list_items(const Context& ctx, const Field& f, const std::str
 Vec2 to_vec2(const Context& ctx, const Field& f, const Range& r);
 std::vector<Vec2> to_polygon(const Context& ctx, const Field& f);
 
-
 // ---------------------------------------------------------------------------------------------------------------
 // The schema walker
 
@@ -126,8 +123,7 @@ class MapReader {
   // `self` must be a map, or absent / empty (then every key keeps its default).
   MapReader(const Context& ctx, Field self) : ctx_(ctx), self_(std::move(self)) {
     if (!self_.value.IsDefined() || self_.value.IsNull()) return;
-    if (!self_.value.IsMap())
-      ctx_.fail(self_, "expected a block of keys (a map), got " + describe(self_.value));
+    if (!self_.value.IsMap()) ctx_.fail(self_, "expected a block of keys (a map), got " + describe(self_.value));
     for (auto it = self_.value.begin(); it != self_.value.end(); ++it) {
       const YAML::Node key = it->first;
       if (!key.IsScalar()) ctx_.fail({key, key, self_.path}, "keys must be plain names, got " + describe(key));
@@ -168,8 +164,10 @@ class MapReader {
   bool number_or_auto(const char* key, std::optional<double>& out, const Range& r) {
     const auto f = take(key);
     if (!f) return false;
-    if (is_word(f->value, "auto")) out.reset();
-    else out = to_number(ctx_, *f, r, " or 'auto'");
+    if (is_word(f->value, "auto"))
+      out.reset();
+    else
+      out = to_number(ctx_, *f, r, " or 'auto'");
     return true;
   }
   bool integer(const char* key, int& out, int lo, int hi) {
@@ -209,8 +207,10 @@ class MapReader {
     if (!f) return false;
     text(key, out);
     if (out.empty() || out == "." || out == ".." || out.find('/') != std::string::npos || out.size() > 200)
-      ctx_.fail(*f, "expected a name usable as a folder name (not empty, at most 200 bytes, no '/', not '.' or "
-                    "'..'), got '" + excerpt(out) + "'");
+      ctx_.fail(*f,
+                "expected a name usable as a folder name (not empty, at most 200 bytes, no '/', not '.' or "
+                "'..'), got '" +
+                    excerpt(out) + "'");
     return true;
   }
   bool vec2(const char* key, Vec2& out, const char* unit) {

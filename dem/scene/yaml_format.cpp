@@ -18,8 +18,10 @@ std::string fmt(double x) {
   // 1e+09 -> 1e9, 3.3e-05 -> 3.3e-5
   if (const std::size_t e = t.find('e'); e != std::string::npos) {
     std::size_t d = e + 1;
-    if (t[d] == '+') t.erase(d, 1);
-    else if (t[d] == '-') ++d;
+    if (t[d] == '+')
+      t.erase(d, 1);
+    else if (t[d] == '-')
+      ++d;
     while (d + 1 < t.size() && t[d] == '0') t.erase(d, 1);
   }
   return t;

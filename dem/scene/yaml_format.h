@@ -8,7 +8,7 @@
 
 namespace polyfloe::scene::detail {
 
-std::string fmt(double x);                // shortest text that reads back to the same double
+std::string fmt(double x);                 // shortest text that reads back to the same double
 std::string fmt(const geometry::Vec2& v);  // "[x, y]"
 std::string quoted(const std::string& s);  // a YAML double-quoted string
 

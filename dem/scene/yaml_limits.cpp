@@ -36,8 +36,9 @@ class TreeWalk {
                        "anchor (&name) marks); write the values out, or nest fewer aliases");
     for (const YAML::Node& ancestor : path_)
       if (ancestor.is(n))
-        throw SceneError(at(where_, n) + ": a recursive YAML alias: the block anchored here is used (*name) inside "
-                                         "itself, which makes the tree infinite; refer to a block only outside it");
+        throw SceneError(at(where_, n) +
+                         ": a recursive YAML alias: the block anchored here is used (*name) inside "
+                         "itself, which makes the tree infinite; refer to a block only outside it");
     if (!n.IsMap() && !n.IsSequence()) return;
     if (static_cast<int>(path_.size()) >= kMaxYamlDepth)
       throw SceneError(at(where_, n) + ": blocks nested more than " + std::to_string(kMaxYamlDepth) +
@@ -71,8 +72,8 @@ std::string read_text_file(const std::filesystem::path& file, std::uintmax_t max
   if (!S_ISREG(st.st_mode))
     throw SceneError(name + ": cannot read the " + what + ": not a regular file (a device, FIFO or socket)");
   if (static_cast<std::uintmax_t>(st.st_size) > max_bytes)
-    throw SceneError(name + ": the " + what + " is " + mib(static_cast<std::uintmax_t>(st.st_size)) +
-                     "; at most " + mib(max_bytes) + " is read");
+    throw SceneError(name + ": the " + what + " is " + mib(static_cast<std::uintmax_t>(st.st_size)) + "; at most " +
+                     mib(max_bytes) + " is read");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(name + ": cannot read the " + what + ": " + std::strerror(errno));
   // One byte more than the file's size: reading it all means the file grew while being read.

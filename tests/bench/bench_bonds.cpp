@@ -20,13 +20,17 @@ void BM_CompressedSheetStep(benchmark::State& state) {
   const std::string text =
       "run: {duration: 10}\n"
       "forcing: {air: {drag: {enabled: false}}}\n"
-      "ice_sheet: {region: [0, 0, " + s + ", " + s + "], cell_size: 11.284, elements: triangles,"
+      "ice_sheet: {region: [0, 0, " +
+      s + ", " + s +
+      "], cell_size: 11.284, elements: triangles,"
       " bonds: {tensile_strength: 1.0e6, shear_strength: 1.0e6, friction_angle: 0.6}}\n"
       "floes:\n"
-      "  - {rectangle: {width: 20, height: " + std::to_string(side + 40) + "}, position: [-10, " +
-      std::to_string(side / 2) + "], velocity: [0.5, 0], motion: kinematic}\n"
-      "  - {rectangle: {width: 20, height: " + std::to_string(side + 40) + "}, position: [" +
-      std::to_string(side + 10) + ", " + std::to_string(side / 2) + "], velocity: [-0.5, 0], motion: kinematic}\n";
+      "  - {rectangle: {width: 20, height: " +
+      std::to_string(side + 40) + "}, position: [-10, " + std::to_string(side / 2) +
+      "], velocity: [0.5, 0], motion: kinematic}\n"
+      "  - {rectangle: {width: 20, height: " +
+      std::to_string(side + 40) + "}, position: [" + std::to_string(side + 10) + ", " + std::to_string(side / 2) +
+      "], velocity: [-0.5, 0], motion: kinematic}\n";
   const scene::Scene sc = scene::parse_scene(text, "bench.yaml", {});
   dynamics::World w = scene::build_world(sc);
   const double dt = scene::time_step(sc, w);

@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < angles.size(); ++i)
     json += (i ? ", " : "") + num(test::cube_plate_analytic(angles[i] * deg, 0.5).w_ratio);
   json += "]},\n  \"runs\": [\n";
-  std::printf("%-36s %6s %9s %9s %9s %9s %10s %6s\n", "method", "alpha", "v'/v0", "Eq.7", "wr/v0", "Eq.6",
-              "spurious", "points");
+  std::printf("%-36s %6s %9s %9s %9s %9s %10s %6s\n", "method", "alpha", "v'/v0", "Eq.7", "wr/v0", "Eq.6", "spurious",
+              "points");
   bool first = true;
   for (const Config& c : configs) {
     std::string v, w, sp, pts, steps;

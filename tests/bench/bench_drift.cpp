@@ -220,9 +220,10 @@ void BM_DriftStage(benchmark::State& state) {
   const dynamics::StepProfile& p = w.profile();
   const double floe_steps = static_cast<double>(w.size()) * static_cast<double>(p.steps - p0.steps);
   state.counters["drift_ns_per_floe"] = 1e9 * (p.forcing - p0.forcing) / floe_steps;
-  state.counters["step_ns_per_floe"] =
-      1e9 * ((p.forcing + p.integrate + p.shapes + p.broad + p.narrow_and_law) -
-             (p0.forcing + p0.integrate + p0.shapes + p0.broad + p0.narrow_and_law)) / floe_steps;
+  state.counters["step_ns_per_floe"] = 1e9 *
+                                       ((p.forcing + p.integrate + p.shapes + p.broad + p.narrow_and_law) -
+                                        (p0.forcing + p0.integrate + p0.shapes + p0.broad + p0.narrow_and_law)) /
+                                       floe_steps;
   state.SetLabel(std::string(to_string(rule)));
 }
 

@@ -92,7 +92,7 @@ using namespace failure_map;
 
 volatile double g_sink = 0.0;  // every timed result ends up here
 
-constexpr double kTieTol = 1e-6;                        // ties of the normal: 1e-6 x the pair's half-diagonal
+constexpr double kTieTol = 1e-6;  // ties of the normal: 1e-6 x the pair's half-diagonal
 const double kCos1deg = std::cos(std::numbers::pi / 180.0);
 
 // ---- Methods ----
@@ -106,7 +106,7 @@ using tsupport::kSat;
 constexpr int kMethods = tsupport::kContactMethods;
 const char* kMethodName[kMethods] = {"planar", "gjk2d", "ccd_epa", "ccd_tie", "ccd_mpr", "sat"};
 const char* kMethodLabel[kMethods] = {"exact planar (area/chord)", "own 2-D GJK-EPA", "libccd GJK-EPA",
-                                      "libccd GJK-EPA tie-break", "libccd MPR", "exact 3-D SAT"};
+                                      "libccd GJK-EPA tie-break",  "libccd MPR",      "exact 3-D SAT"};
 bool is_planar(int m) { return tsupport::is_planar_method(m); }
 
 using Status = tsupport::MethodStatus;
@@ -142,9 +142,9 @@ struct Stats {
   int wrong_normal = 0, wrong_normal_ties = 0, vertical = 0, horizontal = 0;
   std::vector<double> depth_error;  // relative, contacts on overlapping pairs
   std::vector<double> ns_passes;
-  double max_us = 0.0;              // slowest single query (per pair the least of 3 timings) [us]
-  int slowest = -1;                 // its pair
-  double false_depth_max = 0.0;     // deepest false contact [m]
+  double max_us = 0.0;           // slowest single query (per pair the least of 3 timings) [us]
+  int slowest = -1;              // its pair
+  double false_depth_max = 0.0;  // deepest false contact [m]
   std::map<std::string, int> reasons;
   // The first pair of each kind of bug, for the report.
   int first_nonfinite = -1, first_missed = -1, first_false = -1;
@@ -246,8 +246,7 @@ int main(int argc, char** argv) {
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else {
-      std::fprintf(stderr, "usage: %s [-o FILE.json] [--quick] [--random N] [--degenerate N] [--seed S]\n",
-                   argv[0]);
+      std::fprintf(stderr, "usage: %s [-o FILE.json] [--quick] [--random N] [--degenerate N] [--seed S]\n", argv[0]);
       return 2;
     }
   }
@@ -266,22 +265,21 @@ int main(int argc, char** argv) {
   cases.push_back(deep_case(n_degenerate, 20261206u + seed));
   cases.push_back(mixed_case(n_degenerate, 20261207u + seed));
   const double gen_s = std::chrono::duration<double>(Clock::now() - t_start).count();
-  std::printf("Failure map of the contact methods: %d random pairs, %d per degenerate set, %d timed passes "
-              "(pairs generated in %.1f s)\n",
-              n_random, n_degenerate, passes, gen_s);
+  std::printf(
+      "Failure map of the contact methods: %d random pairs, %d per degenerate set, %d timed passes "
+      "(pairs generated in %.1f s)\n",
+      n_random, n_degenerate, passes, gen_s);
   std::printf("Floes at the floating level: z in [%.4f h, %.4f h] (rho_ice / rho_water = %.0f / %.0f)\n\n",
               floating(1.0).lo, floating(1.0).hi, kRhoIce, kRhoWater);
 
   std::string json = "{\n  \"settings\": {\"random_pairs\": " + std::to_string(n_random) +
                      ", \"degenerate_pairs\": " + std::to_string(n_degenerate) +
                      ", \"timed_passes\": " + std::to_string(passes) + ", \"seed_offset\": " + std::to_string(seed) +
-                     ", \"draft_fraction\": " +
-                     num(-floating(1.0).lo) + ", \"wrong_normal_degrees\": 1, \"tie_tolerance\": " + num(kTieTol) +
-                     "},\n  \"methods\": [";
+                     ", \"draft_fraction\": " + num(-floating(1.0).lo) +
+                     ", \"wrong_normal_degrees\": 1, \"tie_tolerance\": " + num(kTieTol) + "},\n  \"methods\": [";
   for (int m = 0; m < kMethods; ++m)
     json += std::string(m ? ", " : "") + "{\"name\": " + json_string(kMethodName[m]) +
-            ", \"label\": " + json_string(kMethodLabel[m]) + ", \"planar\": " + (is_planar(m) ? "true" : "false") +
-            "}";
+            ", \"label\": " + json_string(kMethodLabel[m]) + ", \"planar\": " + (is_planar(m) ? "true" : "false") + "}";
   json += "],\n  \"cases\": [";
   bool first_case = true;
   std::string json_results;
@@ -311,16 +309,16 @@ int main(int argc, char** argv) {
       std::printf("  brute-force MTD of the touching pairs: |MTD| / L <= %.2g (zero by construction)\n",
                   touch_residual);
     json += std::string(first_case ? "\n" : ",\n") + "    {\"name\": " + json_string(c.name) +
-            ", \"description\": " + json_string(c.description) +
-            ", \"pairs\": " + std::to_string(c.pairs.size()) + ", \"overlapping\": " + std::to_string(overlapping) +
+            ", \"description\": " + json_string(c.description) + ", \"pairs\": " + std::to_string(c.pairs.size()) +
+            ", \"overlapping\": " + std::to_string(overlapping) +
             ", \"ref_mtd_min\": " + num(c.pairs.front().touching ? 0.0 : ref_lo) +
             ", \"ref_mtd_max\": " + num(c.pairs.front().touching ? 0.0 : ref_hi) +
             ", \"ref_vertical\": " + std::to_string(vertical) + ", \"touch_residual\": " + num(touch_residual) + "}";
     first_case = false;
 
     std::printf("  %-9s %7s %7s %7s %7s %7s %7s %7s %7s %10s %10s %10s %9s %8s\n", "method", "contact", "failed",
-                "missed", "false", "nonfin", "wrongN", "(ties)", "vert", "dErr p50", "dErr p90", "dErr max",
-                "ns/pair", "max us");
+                "missed", "false", "nonfin", "wrongN", "(ties)", "vert", "dErr p50", "dErr p90", "dErr max", "ns/pair",
+                "max us");
     Stats stats[kMethods];
     for (int m = 0; m < kMethods; ++m) {
       // Each query timed on its own 3 times (the first also classified); per pair the least of the 3, so that a
@@ -358,10 +356,11 @@ int main(int argc, char** argv) {
         ++bugs;
         const Pair& p = c.pairs[static_cast<std::size_t>(index)];
         const Result r = run(m, p);
-        std::printf("    BUG %s: %s, pair %d (reference MTD %.17g): status %d, depth %.17g, normal (%.17g, %.17g, "
-                    "%.17g)\n",
-                    kMethodName[m], what, index, is_planar(m) ? p.ref2 : p.ref3, static_cast<int>(r.status), r.depth,
-                    r.normal.x(), r.normal.y(), r.normal.z());
+        std::printf(
+            "    BUG %s: %s, pair %d (reference MTD %.17g): status %d, depth %.17g, normal (%.17g, %.17g, "
+            "%.17g)\n",
+            kMethodName[m], what, index, is_planar(m) ? p.ref2 : p.ref3, static_cast<int>(r.status), r.depth,
+            r.normal.x(), r.normal.y(), r.normal.z());
         print_polygon("A", p.a);
         print_polygon("B", p.b);
       };
@@ -383,22 +382,20 @@ int main(int argc, char** argv) {
       std::string passes_json = "[";
       for (std::size_t k = 0; k < s.ns_passes.size(); ++k) passes_json += (k ? ", " : "") + num(s.ns_passes[k]);
       passes_json += "]";
-      json_results += std::string(first_result ? "\n" : ",\n") + "    {\"case\": " + json_string(c.name) +
-                      ", \"method\": " + json_string(kMethodName[m]) + ", \"pairs\": " + std::to_string(s.pairs) +
-                      ", \"overlapping\": " + std::to_string(s.overlapping) +
-                      ", \"contacts\": " + std::to_string(s.contacts) + ", \"failed\": " + std::to_string(s.failed) +
-                      ", \"missed\": " + std::to_string(s.missed) +
-                      ", \"false_contact\": " + std::to_string(s.false_contact) +
-                      ", \"false_depth_max\": " + num(s.false_depth_max) +
-                      ", \"nonfinite\": " + std::to_string(s.nonfinite) +
-                      ", \"malformed\": " + std::to_string(s.malformed) +
-                      ", \"wrong_normal\": " + std::to_string(s.wrong_normal) +
-                      ", \"wrong_normal_ties\": " + std::to_string(s.wrong_normal_ties) +
-                      ", \"vertical\": " + std::to_string(s.vertical) +
-                      ", \"horizontal\": " + std::to_string(s.horizontal) + ",\n     \"depth_error_median\": " +
-                      num(p50) + ", \"depth_error_p90\": " + num(p90) + ", \"depth_error_max\": " + num(mx) +
-                      ", \"ns_per_pair\": " + num(ns) + ", \"ns_passes\": " + passes_json +
-                      ", \"max_us_one_pair\": " + num(s.max_us) + ", \"slowest_pair\": " + std::to_string(s.slowest) + ",\n     \"failure_reasons\": " + reasons + "}";
+      json_results +=
+          std::string(first_result ? "\n" : ",\n") + "    {\"case\": " + json_string(c.name) +
+          ", \"method\": " + json_string(kMethodName[m]) + ", \"pairs\": " + std::to_string(s.pairs) +
+          ", \"overlapping\": " + std::to_string(s.overlapping) + ", \"contacts\": " + std::to_string(s.contacts) +
+          ", \"failed\": " + std::to_string(s.failed) + ", \"missed\": " + std::to_string(s.missed) +
+          ", \"false_contact\": " + std::to_string(s.false_contact) +
+          ", \"false_depth_max\": " + num(s.false_depth_max) + ", \"nonfinite\": " + std::to_string(s.nonfinite) +
+          ", \"malformed\": " + std::to_string(s.malformed) + ", \"wrong_normal\": " + std::to_string(s.wrong_normal) +
+          ", \"wrong_normal_ties\": " + std::to_string(s.wrong_normal_ties) +
+          ", \"vertical\": " + std::to_string(s.vertical) + ", \"horizontal\": " + std::to_string(s.horizontal) +
+          ",\n     \"depth_error_median\": " + num(p50) + ", \"depth_error_p90\": " + num(p90) +
+          ", \"depth_error_max\": " + num(mx) + ", \"ns_per_pair\": " + num(ns) + ", \"ns_passes\": " + passes_json +
+          ", \"max_us_one_pair\": " + num(s.max_us) + ", \"slowest_pair\": " + std::to_string(s.slowest) +
+          ",\n     \"failure_reasons\": " + reasons + "}";
       first_result = false;
     }
     std::printf("\n");

@@ -111,7 +111,8 @@ const Setup& setup() {
       if (!wet) continue;
       f.area = d.shape->area();
       double perimeter = 0.0;
-      for (std::size_t i = 0; i < f.world.size(); ++i) perimeter += (f.world[(i + 1) % f.world.size()] - f.world[i]).norm();
+      for (std::size_t i = 0; i < f.world.size(); ++i)
+        perimeter += (f.world[(i + 1) % f.world.size()] - f.world[i]).norm();
       f.side_area = perimeter * kDraft;
       f.radius = std::sqrt(f.area / std::numbers::pi);
       const Vec2 water = r.direct->at({f.centre.x(), f.centre.y(), -kDraft}, 0.0);
@@ -164,17 +165,21 @@ void BM_FieldSampling(benchmark::State& state) {
   double sink = 0.0;
   const double cpu0 = tsupport::thread_cpu_seconds();
   for (auto _ : state)
-    for (std::size_t i = 0; i < s.floes.size(); ++i) sink += ocean_load(s.floes[i], samples[i], *field, pts, u, fx, fy).torque;
+    for (std::size_t i = 0; i < s.floes.size(); ++i)
+      sink += ocean_load(s.floes[i], samples[i], *field, pts, u, fx, fy).torque;
   const double floes = static_cast<double>(s.floes.size());
-  state.counters["ns_per_floe"] = 1e9 * (tsupport::thread_cpu_seconds() - cpu0) / (floes * static_cast<double>(state.iterations()));
+  state.counters["ns_per_floe"] =
+      1e9 * (tsupport::thread_cpu_seconds() - cpu0) / (floes * static_cast<double>(state.iterations()));
   state.counters["points_per_floe"] = points / floes;
   state.counters["force_error"] = std::sqrt(ef2 / f2);
   state.counters["torque_error"] = std::sqrt(et2 / t2);
   state.counters["grid_mb"] = grid_mb;
   state.counters["sink"] = sink;  // keeps the loop live (DoNotOptimize on a double read afterwards is unsafe here)
   char label[64];
-  if (source < 5) std::snprintf(label, sizeof label, "grid %g m %s", kGrid[source], std::string(to_string(rule)).c_str());
-  else std::snprintf(label, sizeof label, "direct %s", std::string(to_string(rule)).c_str());
+  if (source < 5)
+    std::snprintf(label, sizeof label, "grid %g m %s", kGrid[source], std::string(to_string(rule)).c_str());
+  else
+    std::snprintf(label, sizeof label, "direct %s", std::string(to_string(rule)).c_str());
   state.SetLabel(label);
 }
 
@@ -186,8 +191,10 @@ int main(int argc, char** argv) {
   // --case DIR (ours), the rest to Google Benchmark.
   std::vector<char*> rest{argv[0]};
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--case") == 0 && i + 1 < argc) g_case = argv[++i];
-    else rest.push_back(argv[i]);
+    if (std::strcmp(argv[i], "--case") == 0 && i + 1 < argc)
+      g_case = argv[++i];
+    else
+      rest.push_back(argv[i]);
   }
   int n = static_cast<int>(rest.size());
   benchmark::Initialize(&n, rest.data());

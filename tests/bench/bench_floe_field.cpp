@@ -38,7 +38,8 @@ void BM_GenerateFloeField(benchmark::State& state) {
     benchmark::DoNotOptimize(field.floes.data());
   }
   const double seconds = (tsupport::thread_cpu_seconds() - cpu0) / static_cast<double>(state.iterations());
-  const scene::FieldStatistics st = scene::field_statistics(field.floes, field.region_area, spec.size_min, spec.size_max);
+  const scene::FieldStatistics st =
+      scene::field_statistics(field.floes, field.region_area, spec.size_min, spec.size_max);
   state.counters["floes"] = static_cast<double>(st.floes);
   state.counters["seconds"] = seconds;
   state.counters["us_per_floe"] = 1e6 * seconds / static_cast<double>(st.floes);
@@ -57,8 +58,8 @@ void BM_VoronoiCells(benchmark::State& state) {
   const geometry::Aabb box{{0.0, 0.0}, {1000.0, 1000.0}};
   const double cpu0 = tsupport::thread_cpu_seconds();
   for (auto _ : state) benchmark::DoNotOptimize(geometry::voronoi_cells(sites, box).data());
-  state.counters["us_per_site"] =
-      1e6 * (tsupport::thread_cpu_seconds() - cpu0) / (static_cast<double>(n) * static_cast<double>(state.iterations()));
+  state.counters["us_per_site"] = 1e6 * (tsupport::thread_cpu_seconds() - cpu0) /
+                                  (static_cast<double>(n) * static_cast<double>(state.iterations()));
 }
 
 // A scene of N explicit 8 m squares on a 10 m lattice (each checked against the others for initial overlap),

@@ -56,8 +56,8 @@ using tsupport::thread_cpu_seconds;
 constexpr int kPairs = 4096;  // a power of two: the pair index is cycled with a mask
 
 struct PairSet {
-  std::vector<Vec2> xy;       // all vertices, pair after pair: A's then B's
-  std::vector<int> offset;    // 2 * kPairs + 1 offsets into xy
+  std::vector<Vec2> xy;     // all vertices, pair after pair: A's then B's
+  std::vector<int> offset;  // 2 * kPairs + 1 offsets into xy
   std::span<const Vec2> poly(int k) const {
     return {xy.data() + offset[k], static_cast<std::size_t>(offset[k + 1] - offset[k])};
   }

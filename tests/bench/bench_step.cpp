@@ -79,10 +79,10 @@ using geometry::Vec2;
 
 namespace {
 
-using tsupport::thread_cpu_seconds;
+using tsupport::make_pack;
 using tsupport::Pack;
 using tsupport::PackSpec;
-using tsupport::make_pack;
+using tsupport::thread_cpu_seconds;
 
 enum class Kind { dense, dense_sorted, free, dense_contact, dense_contact_sorted };
 

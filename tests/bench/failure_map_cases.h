@@ -127,14 +127,14 @@ struct Pair {
   std::vector<Vec2> a, b;    // world polygons, counter-clockwise
   std::vector<Vec3> a3, b3;  // world prism vertices: bottom ring, then top ring (ConvexPolyhedron::prism's order)
   std::shared_ptr<const geometry::ConvexPolyhedron> sa, sb;
-  Vec3 ca, cb;               // centroids
-  bool touching = false;     // zero overlap by construction
-  double ref2 = 0.0;         // horizontal MTD [m] (<= 0: no overlap)
+  Vec3 ca, cb;            // centroids
+  bool touching = false;  // zero overlap by construction
+  double ref2 = 0.0;      // horizontal MTD [m] (<= 0: no overlap)
   Vec2 n2{1.0, 0.0};
-  double ref3 = 0.0;         // 3-D MTD [m]
+  double ref3 = 0.0;  // 3-D MTD [m]
   Vec3 n3{1.0, 0.0, 0.0};
-  bool vertical = false;     // the 3-D MTD is vertical
-  bool vertical_tie = false; // ... and +z, -z tie
+  bool vertical = false;       // the 3-D MTD is vertical
+  bool vertical_tie = false;   // ... and +z, -z tie
   double half_diagonal = 0.0;  // L of the pair's joint 3-D bounding box [m]
   double ref2_computed = 0.0;  // what the brute force says for a touching pair (0 up to round-off)
 };

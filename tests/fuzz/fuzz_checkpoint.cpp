@@ -153,9 +153,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static Base floes = make_base(kFloes);
   static Base sheet = make_base(kSheet);
-  static const std::filesystem::path file =
-      std::filesystem::path(access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp") /
-      ("polyfloe_fuzz_checkpoint_" + std::to_string(getpid()) + ".h5");
+  static const std::filesystem::path file = std::filesystem::path(access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp") /
+                                            ("polyfloe_fuzz_checkpoint_" + std::to_string(getpid()) + ".h5");
   FuzzedDataProvider in(data, size);
   const Base& base = in.ConsumeBool() ? sheet : floes;
   run::Checkpoint c = base.checkpoint;

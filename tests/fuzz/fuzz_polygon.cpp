@@ -11,7 +11,8 @@
 // Two accepted polygons (at most kMaxPolygonVertices corners) are placed at fuzzer-chosen positions and yaws; when
 // both placed outlines are still valid (the narrow phase's precondition) planar_overlap() must give, both ways:
 //   finite outputs (with and without the gradient terms, and depth_gradient(); the foundation terms, with the same
-//   area and depth); a unit normal; area > 0 and at most the smaller polygon's area; the overlap centroid inside both bounding boxes; the same area A-B and B-A;
+//   area and depth); a unit normal; area > 0 and at most the smaller polygon's area; the overlap centroid inside both
+//   bounding boxes; the same area A-B and B-A;
 //   no contact when the bounding boxes are apart; a contact when a point lies well inside both polygons;
 //   the same bits when given a kept topology - a fuzzer-chosen one, or the one the call itself returned.
 // A violated check prints what failed and aborts (a crash for libFuzzer, which saves the input).
@@ -60,14 +61,14 @@ const contact::PlanarContact* g_contact = nullptr;  // the contact being checked
                  c->point.y(), c->normal.x(), c->normal.y(), c->depth, c->chord);
   std::abort();
 }
-#define CHECK(cond) \
-  do {              \
+#define CHECK(cond)                                   \
+  do {                                                \
     if (!(cond)) violated(#cond, __LINE__, 0.0, 0.0); \
   } while (0)
-#define CHECK_LE(a, b)                                          \
-  do {                                                          \
-    const double a_ = (a), b_ = (b);                            \
-    if (!(a_ <= b_)) violated(#a " <= " #b, __LINE__, a_, b_);  \
+#define CHECK_LE(a, b)                                         \
+  do {                                                         \
+    const double a_ = (a), b_ = (b);                           \
+    if (!(a_ <= b_)) violated(#a " <= " #b, __LINE__, a_, b_); \
   } while (0)
 
 bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
@@ -75,18 +76,36 @@ bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y())
 // A double as the fuzzer likes it: raw bits, a special value, the previous one (repeated points), one ulp away from
 // it, a small integer, or a moderate number.
 double next_double(FuzzedDataProvider& in, double previous) {
-  static constexpr double kSpecial[] = {
-      0.0, -0.0, 1.0, -1.0, 0.5, 1e-9, 1e9, 1e-154, 1e154, 1e-300, 1e300,
-      std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(), std::numeric_limits<double>::min(),
-      std::numeric_limits<double>::denorm_min(), -std::numeric_limits<double>::denorm_min(),
-      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::quiet_NaN(), 1.0 + kEps, 1e6, 1e-6, std::numbers::pi};
+  static constexpr double kSpecial[] = {0.0,
+                                        -0.0,
+                                        1.0,
+                                        -1.0,
+                                        0.5,
+                                        1e-9,
+                                        1e9,
+                                        1e-154,
+                                        1e154,
+                                        1e-300,
+                                        1e300,
+                                        std::numeric_limits<double>::max(),
+                                        -std::numeric_limits<double>::max(),
+                                        std::numeric_limits<double>::min(),
+                                        std::numeric_limits<double>::denorm_min(),
+                                        -std::numeric_limits<double>::denorm_min(),
+                                        std::numeric_limits<double>::infinity(),
+                                        -std::numeric_limits<double>::infinity(),
+                                        std::numeric_limits<double>::quiet_NaN(),
+                                        1.0 + kEps,
+                                        1e6,
+                                        1e-6,
+                                        std::numbers::pi};
   switch (in.ConsumeIntegralInRange<int>(0, 6)) {
     case 0: return std::bit_cast<double>(in.ConsumeIntegral<std::uint64_t>());
     case 1: return kSpecial[in.ConsumeIntegralInRange<std::size_t>(0, std::size(kSpecial) - 1)];
     case 2: return previous;
-    case 3: return std::nextafter(previous, in.ConsumeBool() ? std::numeric_limits<double>::infinity()
-                                                              : -std::numeric_limits<double>::infinity());
+    case 3:
+      return std::nextafter(previous, in.ConsumeBool() ? std::numeric_limits<double>::infinity()
+                                                       : -std::numeric_limits<double>::infinity());
     case 4: return static_cast<double>(in.ConsumeIntegralInRange<int>(-16, 16));
     default: return in.ConsumeFloatingPointInRange<double>(-1000.0, 1000.0);
   }
@@ -128,8 +147,10 @@ std::optional<ConvexPolygon> make_polygon(FuzzedDataProvider& in) {
       if (!v.empty()) {
         switch (in.ConsumeIntegralInRange<int>(0, 4)) {
           case 0: std::reverse(v.begin(), v.end()); break;  // clockwise
-          case 1: v.insert(v.begin() + in.ConsumeIntegralInRange<std::ptrdiff_t>(0, std::ssize(v) - 1),
-                           v[in.ConsumeIntegralInRange<std::size_t>(0, v.size() - 1)]); break;  // a repeat
+          case 1:
+            v.insert(v.begin() + in.ConsumeIntegralInRange<std::ptrdiff_t>(0, std::ssize(v) - 1),
+                     v[in.ConsumeIntegralInRange<std::size_t>(0, v.size() - 1)]);
+            break;   // a repeat
           case 2: {  // one coordinate replaced
             Vec2& p = v[in.ConsumeIntegralInRange<std::size_t>(0, v.size() - 1)];
             (in.ConsumeBool() ? p.x() : p.y()) = next_double(in, p.x());

@@ -74,8 +74,10 @@ std::string without_comments(const std::string& yaml) {
     std::size_t cut = end;
     bool quoted = false;
     for (std::size_t i = line; i < end; ++i) {
-      if (quoted && yaml[i] == '\\') ++i;
-      else if (yaml[i] == '"') quoted = !quoted;
+      if (quoted && yaml[i] == '\\')
+        ++i;
+      else if (yaml[i] == '"')
+        quoted = !quoted;
       else if (!quoted && yaml[i] == '#' && (i == line || yaml[i - 1] == ' ')) {
         cut = i;
         break;

@@ -41,15 +41,19 @@ std::string fragment(FuzzedDataProvider& in, int& next_anchor) {
   const std::string key = "k" + std::to_string(in.ConsumeIntegralInRange<int>(0, 40));
   switch (op) {
     case 0: next_anchor += next_anchor < 8; return key + ": " + anchor(k % 8) + " [lol, 1, 2.5]";
-    case 1: next_anchor += next_anchor < 8; return key + ": " + anchor(k % 8) + " " + list_of(next_anchor > 1 ? alias(used) : "x");
+    case 1:
+      next_anchor += next_anchor < 8;
+      return key + ": " + anchor(k % 8) + " " + list_of(next_anchor > 1 ? alias(used) : "x");
     case 2: next_anchor += next_anchor < 8; return key + ": " + anchor(k % 8) + " [" + alias(k % 8) + "]";  // recursive
-    case 3: next_anchor += next_anchor < 8;
+    case 3:
+      next_anchor += next_anchor < 8;
       return key + ": " + anchor(k % 8) + " {a: " + alias(used) + ", b: [" + alias(k % 8) + "]}";
     case 4: return "run: " + alias(used);
     case 5: return "floes: " + list_of(alias(used));
     case 6: next_anchor += next_anchor < 8; return "run: " + anchor(k % 8) + " {duration: " + alias(k % 8) + "}";
     case 7: next_anchor += next_anchor < 8; return "floes: " + anchor(k % 8) + " [" + alias(k % 8) + "]";
-    case 8: next_anchor += next_anchor < 8;
+    case 8:
+      next_anchor += next_anchor < 8;
       return key + ": " + anchor(k % 8) + " " + std::string(static_cast<std::size_t>(fan) * 3, '[') + alias(used) +
              std::string(static_cast<std::size_t>(fan) * 3, ']');
     case 9: return key + ": {" + alias(used) + ": 1}";  // an alias as a key

@@ -51,10 +51,10 @@ std::string home() {
 struct Case {
   std::string name;  // file stem
   fs::path file;
-  std::vector<std::string> args;    // "# args:" split on spaces, placeholders not yet replaced
-  std::vector<std::string> expect;  // "# expect:" lines
+  std::vector<std::string> args;                // "# args:" split on spaces, placeholders not yet replaced
+  std::vector<std::string> expect;              // "# expect:" lines
   std::vector<std::vector<std::string>> setup;  // "# setup:" lines, split on spaces
-  std::string what;                 // "# Bad input:" line
+  std::string what;                             // "# Bad input:" line
 };
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.file.filename().string(); }
@@ -103,8 +103,10 @@ std::set<std::string> entries(const fs::path& dir) {
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
     std::string entry = e.path().string();
     const fs::file_status st = e.symlink_status();
-    if (fs::is_symlink(st)) entry += " -> " + fs::read_symlink(e.path()).string();
-    else if (fs::is_regular_file(st)) entry += " #" + std::to_string(std::hash<std::string>{}(slurp(e.path())));
+    if (fs::is_symlink(st))
+      entry += " -> " + fs::read_symlink(e.path()).string();
+    else if (fs::is_regular_file(st))
+      entry += " #" + std::to_string(std::hash<std::string>{}(slurp(e.path())));
     s.insert(entry);
   }
   return s;
@@ -153,7 +155,6 @@ class BadInput : public ::testing::TestWithParam<Case> {
   }
   static void TearDownTestSuite() { fs::remove_all(base_); }
 };
-
 
 // Runs a case's "# setup:" lines in its scratch folder (paths relative to it). Returns the descriptors of the locks
 // it holds, released after the run.
@@ -240,7 +241,8 @@ TEST_P(BadInput, ExitsTwoNamingTheProblemAndWritesNothing) {
   const std::string text = slurp(log);
   EXPECT_EQ(code, 2) << text;
   EXPECT_FALSE(c.expect.empty()) << "the case has no '# expect:' line; polyfloe printed:\n" << text;
-  for (const std::string& e : c.expect) EXPECT_NE(text.find(e), std::string::npos) << "expected '" << e << "' in:\n" << text;
+  for (const std::string& e : c.expect)
+    EXPECT_NE(text.find(e), std::string::npos) << "expected '" << e << "' in:\n" << text;
   if (!out_existed) {
     EXPECT_FALSE(fs::exists(fs::symlink_status(out))) << "the output folder was created";
   }

@@ -135,8 +135,7 @@ TEST(Cli, CubePlateSceneRunsAndMatchesEquations6And7) {
   EXPECT_NE(r.output.find("Contacts: the first at t = 0.00"), std::string::npos) << r.output;
   std::ifstream pvd(out / "bodies.pvd");
   const std::string series((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
-  EXPECT_NE(series.find("timestep=\"0.1\" group=\"\" part=\"0\" file=\"bodies/bodies_000050.vtp\""),
-            std::string::npos)
+  EXPECT_NE(series.find("timestep=\"0.1\" group=\"\" part=\"0\" file=\"bodies/bodies_000050.vtp\""), std::string::npos)
       << series;
   EXPECT_EQ(series.find("bodies_000051"), std::string::npos) << series;
   EXPECT_NE(series.find("timestep=\"0.002\" group=\"\" part=\"0\" file=\"bodies/bodies_000001.vtp\""),
@@ -224,9 +223,9 @@ TEST(Cli, OverflowingDragStopsWithExitThree) {
   // semi-implicit treatment is stable there: tests/validation/test_drift.cpp).
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_overflow");
   const Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
-                            " --set run.dt=100 --set run.duration=3000 --set forcing.ocean.skin_drag.enabled=true"
-                            " --set forcing.treatment=explicit"
-                            " --set floes.0.velocity=[10,0] --set floes.0.position=[-1000,0]");
+                                " --set run.dt=100 --set run.duration=3000 --set forcing.ocean.skin_drag.enabled=true"
+                                " --set forcing.treatment=explicit"
+                                " --set floes.0.velocity=[10,0] --set floes.0.position=[-1000,0]");
   EXPECT_EQ(r.code, 3) << r.output;
   fs::remove_all(out);
   // Without checkpoints too, the stopped run leaves results.xmf describing the frames results.h5 holds (t = 0).
@@ -247,8 +246,8 @@ TEST(Cli, OverflowingDragStopsWithExitThree) {
 TEST(Cli, OutputIntervalShorterThanTheStepWritesEveryStep) {
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_tiny_interval");
   fs::remove_all(out);
-  Result r = run_polyfloe("run " + kScene + " -o " + out.string() +
-                          " --set output.interval=1e-300 --set run.duration=0.01");
+  Result r =
+      run_polyfloe("run " + kScene + " -o " + out.string() + " --set output.interval=1e-300 --set run.duration=0.01");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("note: output.interval 1e-300 s is shorter than the step"), std::string::npos) << r.output;
   r = run_polyfloe("run " + kScene + " -o " + out.string() +
@@ -276,8 +275,8 @@ TEST(Cli, FramesLandOnMultiplesOfTheInterval) {
                                 " --set run.dt=0.0013 --set output.interval=0.01 --set run.duration=0.035");
   ASSERT_EQ(r.code, 0) << r.output;
   const std::string pvd = polyfloe::tsupport::slurp(out / "floes.pvd");
-  for (const char* t : {"timestep=\"0\"", "timestep=\"0.01\"", "timestep=\"0.02\"", "timestep=\"0.03\"",
-                        "timestep=\"0.035\""}) {
+  for (const char* t :
+       {"timestep=\"0\"", "timestep=\"0.01\"", "timestep=\"0.02\"", "timestep=\"0.03\"", "timestep=\"0.035\""}) {
     EXPECT_NE(pvd.find(t), std::string::npos) << t << " not in\n" << pvd;
   }
   EXPECT_EQ(pvd.find("timestep=\"0.0104"), std::string::npos) << pvd;
@@ -365,7 +364,8 @@ TEST(Cli, SecondRunIntoABusyFolderIsRefused) {
   long pid = 0;
   ASSERT_EQ(std::fscanf(pipe, "%ld", &pid), 1);
   pclose(pipe);
-  for (int i = 0; i < 200 && !fs::exists(out / "floes.pvd"); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  for (int i = 0; i < 200 && !fs::exists(out / "floes.pvd"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
   const Result r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=0.2");
   kill(static_cast<pid_t>(pid), SIGKILL);
   EXPECT_EQ(r.code, 2) << r.output;
@@ -388,11 +388,13 @@ TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
   std::ifstream resolved(out / "scene.resolved.yaml");
   const std::string text((std::istreambuf_iterator<char>(resolved)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("field: {type: tidal, velocity: [0.05, 0], amplitude: [0.25, 0.1], period: 44712, phase: 0}"),
-            std::string::npos) << text;
+            std::string::npos)
+      << text;
   EXPECT_NE(text.find("coriolis: {enabled: true, latitude: 75"), std::string::npos) << text;
   // Steered into each other, two floes meet within a few steps: the contact cannot be resolved at 30 s steps, and
   // the run stops (exit 3) saying which bodies and what step would do.
-  r = run_polyfloe("run " + scene + " -o " + out.string() + " --set floes.1.position=[200,0] --set floes.1.velocity=[-1,0]");
+  r = run_polyfloe("run " + scene + " -o " + out.string() +
+                   " --set floes.1.position=[200,0] --set floes.1.velocity=[-1,0]");
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("the contact between bodies 0 and 1"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("or run.dt to"), std::string::npos) << r.output;
@@ -402,7 +404,8 @@ TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
 TEST(Cli, VortexSceneRuns) {
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/drift_vortex.yaml";
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_vortex");
-  const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set run.duration=0.5 --set output.interval=0.25");
+  const Result r =
+      run_polyfloe("run " + scene + " -o " + out.string() + " --set run.duration=0.5 --set output.interval=0.25");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "floes.pvd"));
   fs::remove_all(out);
@@ -413,8 +416,9 @@ TEST(Sweep, ScriptRunsFamiliesPerSeedAndThePlotsFollow) {
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_sweep");
   fs::remove_all(out);
   const std::string src = POLYFLOE_SOURCE_DIR;
-  const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src + "/scripts/sweep.sh -j 2 -s 1,2 -o " +
-                          out.string() + " concentration exponent -- --set run.duration=0.02 --set output.interval=0.01 "
+  const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src +
+                          "/scripts/sweep.sh -j 2 -s 1,2 -o " + out.string() +
+                          " concentration exponent -- --set run.duration=0.02 --set output.interval=0.01 "
                           "--set output.vtk=false > /dev/null 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
   for (const char* m : {"concentration/c0.50", "concentration/c0.60", "exponent/a1.2", "exponent/a2.0"}) {
@@ -462,7 +466,7 @@ TEST(Cli, VelocityGridTooLargeIsRefusedBeforeAnyOutput) {
   EXPECT_FALSE(fs::exists(out));
   // A grid that fits runs and lists its series.
   const Result ok = run_polyfloe("run " + scene + " -o " + out.string() +
-                             " --set run.duration=0.01 --set output.interval=0.005 --set output.contacts=false");
+                                 " --set run.duration=0.01 --set output.interval=0.005 --set output.contacts=false");
   EXPECT_EQ(ok.code, 0) << ok.output;
   EXPECT_NE(ok.output.find("floes.pvd, velocity.pvd"), std::string::npos) << ok.output;
   EXPECT_TRUE(fs::exists(out / "velocity" / "velocity_000002.vti"));
@@ -474,7 +478,7 @@ TEST(Cli, ChannelGeometryFigureFromARun) {
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_geometry");
   fs::remove_all(out);
   const Result r = run_polyfloe("run " + src + "/dem/scenes/channel.yaml -o " + out.string() +
-                            " --set run.duration=0.001 --set output.vtk=false");
+                                " --set run.duration=0.001 --set output.vtk=false");
   ASSERT_EQ(r.code, 0) << r.output;
   const std::string plot = "/usr/bin/python3 " + src + "/postprocess/plot_channel_geometry.py " + out.string() +
                            " -o " + (out / "geometry.png").string() + " > /dev/null 2>&1";
@@ -483,8 +487,8 @@ TEST(Cli, ChannelGeometryFigureFromARun) {
   // A run without a channel has nothing to draw: a clear refusal.
   const Result two = run_polyfloe("run " + kScene + " -o " + (out / "two").string() + " --set run.duration=0.01");
   ASSERT_EQ(two.code, 0) << two.output;
-  const std::string none = "/usr/bin/python3 " + src + "/postprocess/plot_channel_geometry.py " + (out / "two").string() +
-                           " -o " + (out / "none.png").string() + " > /dev/null 2>&1";
+  const std::string none = "/usr/bin/python3 " + src + "/postprocess/plot_channel_geometry.py " +
+                           (out / "two").string() + " -o " + (out / "none.png").string() + " > /dev/null 2>&1";
   EXPECT_NE(std::system(none.c_str()), 0);
   EXPECT_FALSE(fs::exists(out / "none.png"));
   fs::remove_all(out);
@@ -496,12 +500,13 @@ TEST(Uniaxial, StudyScriptRunsAndThePlotsFollow) {
   const std::string src = POLYFLOE_SOURCE_DIR;
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_uniaxial");
   fs::remove_all(out);
-  const std::string cmd = "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src +
-                          "/scripts/uniaxial_study.sh -j 2 -o " + out.string() + " -f " + (out / "fig").string() +
-                          " -- --set run.duration=0.05 --set output.interval=0.025 --set output.vtk=false"
-                          " --set ice_sheet.region=[0,0,60,60] --set floes.0.rectangle.height=90 --set floes.0.position=[-10,30]"
-                          " --set floes.1.rectangle.height=90 --set floes.1.position=[70,30]"
-                          " > /dev/null 2>&1";
+  const std::string cmd =
+      "POLYFLOE_BIN=" + std::string(POLYFLOE_BINARY) + " bash " + src + "/scripts/uniaxial_study.sh -j 2 -o " +
+      out.string() + " -f " + (out / "fig").string() +
+      " -- --set run.duration=0.05 --set output.interval=0.025 --set output.vtk=false"
+      " --set ice_sheet.region=[0,0,60,60] --set floes.0.rectangle.height=90 --set floes.0.position=[-10,30]"
+      " --set floes.1.rectangle.height=90 --set floes.1.position=[70,30]"
+      " > /dev/null 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
   for (const char* s : {"0.1", "0.5", "1.0", "1.5"})
     EXPECT_TRUE(fs::exists(out / ("sigma_" + std::string(s)) / "results.h5")) << s;

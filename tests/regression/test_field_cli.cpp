@@ -49,7 +49,8 @@ TEST_F(FieldCli, RefusesBadArguments) {
   expect_refused("import", "import takes CASE, got 0 argument(s)");
   expect_refused("import " + dir_.string(), "import needs -o FILE");
   expect_refused("import " + dir_.string() + out + " --cell -5", "--cell: expected one spacing > 0 m");
-  expect_refused("import " + dir_.string() + out + " --cell ten", "--cell: expected numbers separated by commas, got 'ten'");
+  expect_refused("import " + dir_.string() + out + " --cell ten",
+                 "--cell: expected numbers separated by commas, got 'ten'");
   expect_refused("import " + dir_.string() + out + " --bounds 0,0,10", "--bounds: expected X0,Y0,X1,Y1 [m]");
   expect_refused("import " + dir_.string() + out + " --bounds 0,0,-10,10", "with X1 > X0 and Y1 > Y0");
   expect_refused("import " + dir_.string() + out + " --z -1,nan", "--z: expected numbers separated by commas");
@@ -101,14 +102,17 @@ bool write_box_case(const fs::path& c) {
   if (std::system("command -v blockMesh > /dev/null 2>&1") != 0) return false;
   for (const char* d : {"system", "constant", "0"}) fs::create_directories(c / d);
   const std::string header = "FoamFile { version 2.0; format ascii; class dictionary; object x; }\n";
-  std::ofstream(c / "system" / "controlDict") << header << "application simpleFoam;\nstartFrom startTime;\n"
-      "startTime 0;\nstopAt endTime;\nendTime 1;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 1;\n";
+  std::ofstream(c / "system" / "controlDict")
+      << header
+      << "application simpleFoam;\nstartFrom startTime;\n"
+         "startTime 0;\nstopAt endTime;\nendTime 1;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 1;\n";
   std::ofstream(c / "system" / "fvSchemes") << header << "ddtSchemes { default steadyState; }\n";
   std::ofstream(c / "system" / "fvSolution") << header;
   std::ofstream(c / "system" / "blockMeshDict")
-      << header << "convertToMeters 1;\nvertices ((0 0 0) (100 0 0) (100 100 0) (0 100 0) (0 0 10) (100 0 10) "
-                   "(100 100 10) (0 100 10));\nblocks (hex (0 1 2 3 4 5 6 7) (4 4 5) simpleGrading (1 1 1));\n"
-                   "edges ();\nboundary ();\ndefaultPatch { name walls; type patch; }\n";
+      << header
+      << "convertToMeters 1;\nvertices ((0 0 0) (100 0 0) (100 100 0) (0 100 0) (0 0 10) (100 0 10) "
+         "(100 100 10) (0 100 10));\nblocks (hex (0 1 2 3 4 5 6 7) (4 4 5) simpleGrading (1 1 1));\n"
+         "edges ();\nboundary ();\ndefaultPatch { name walls; type patch; }\n";
   std::ofstream u(c / "0" / "U");
   u << "FoamFile { version 2.0; format ascii; class volVectorField; object U; }\ndimensions [0 1 -1 0 0 0 0];\n"
     << "internalField nonuniform List<vector> 80 (\n";
@@ -116,7 +120,8 @@ bool write_box_case(const fs::path& c) {
     for (int n = 0; n < 16; ++n) u << "(" << (2 * k + 1) / 10.0 << " 0 0)\n";
   u << ");\nboundaryField { walls { type zeroGradient; } }\n";
   u.close();
-  const std::string mesh = "cd " + c.string() + " && WM_PROJECT_DIR=/usr/share/openfoam FOAM_ETC=/usr/share/openfoam/etc "
+  const std::string mesh = "cd " + c.string() +
+                           " && WM_PROJECT_DIR=/usr/share/openfoam FOAM_ETC=/usr/share/openfoam/etc "
                            "blockMesh > log.blockMesh 2>&1";
   return std::system(mesh.c_str()) == 0;
 }
@@ -188,7 +193,8 @@ TEST_F(FieldCli, CaseFoamNamesTheCaseAndVtkErrorsBecomeOneClearLine) {
   if (!write_box_case(c)) GTEST_SKIP() << "OpenFOAM's blockMesh is not installed";
   std::ofstream(c / "case.foam") << "";
   const fs::path out = dir_ / "out.h5";
-  Result r = field("import " + (c / "case.foam").string() + " -o " + out.string() + " --cell 25 --bounds -50,0,100,100");
+  Result r =
+      field("import " + (c / "case.foam").string() + " -o " + out.string() + " --cell 25 --bounds -50,0,100,100");
   EXPECT_EQ(r.code, 0) << r.output;
   fs::remove(out);
   // field.pvd blanks land (x < 0 here: outside the mesh) with VTK's ghost array instead of showing still water.
@@ -222,7 +228,8 @@ TEST_F(FieldCli, CaseFoamNamesTheCaseAndVtkErrorsBecomeOneClearLine) {
   EXPECT_NE(r.output.find("VTK's OpenFOAM reader said: Error reading line"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Unsupported directive includeEtc"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("install OpenFOAM (bash scripts/setup.sh), or write the field out plainly with "
-                          "OpenFOAM's `postProcess -fields '(U)' -func 'writeObjects(U)'`"), std::string::npos)
+                          "OpenFOAM's `postProcess -fields '(U)' -func 'writeObjects(U)'`"),
+            std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find("\x1b"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("ERR|"), std::string::npos) << r.output;
@@ -243,7 +250,8 @@ bool decompose_box_case(const fs::path& c) {
   std::ofstream(c / "system" / "decomposeParDict")
       << "FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
          "numberOfSubdomains 2;\nmethod simple;\ncoeffs { n (2 1 1); }\nsimpleCoeffs { n (2 1 1); delta 0.001; }\n";
-  const std::string cmd = "cd " + c.string() + " && WM_PROJECT_DIR=/usr/share/openfoam FOAM_ETC=/usr/share/openfoam/etc "
+  const std::string cmd = "cd " + c.string() +
+                          " && WM_PROJECT_DIR=/usr/share/openfoam FOAM_ETC=/usr/share/openfoam/etc "
                           "decomposePar > log.decomposePar 2>&1";
   if (std::system(cmd.c_str()) != 0) return false;
   for (const char* p : {"processor0", "processor1"}) fs::rename(c / p / "0", c / p / "10");

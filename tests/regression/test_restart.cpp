@@ -65,7 +65,8 @@ void expect_readable_after_kill(const fs::path& dir) {
       // HDF5 does not promise a file its killed writer leaves: the copy taken with the checkpoints must then hold
       // every frame of the newest checkpoint (checked below).
       if (std::string(name) != "checkpoints/results.h5" && fs::exists(dir / "checkpoints/results.h5")) {
-        std::fprintf(stderr, "note: %s unreadable after a kill (%s); the checkpoints' copy stands in\n", name, e.what());
+        std::fprintf(stderr, "note: %s unreadable after a kill (%s); the checkpoints' copy stands in\n", name,
+                     e.what());
         continue;
       }
       // Killed while a fresh run was creating its files, before its first frame: nothing was complete to lose.
@@ -83,8 +84,8 @@ void expect_readable_after_kill(const fs::path& dir) {
 }
 
 struct Interrupted {
-  int kills = 0;      // kills that hit a running simulation
-  int restarts = 0;   // runs started with --restart
+  int kills = 0;     // kills that hit a running simulation
+  int restarts = 0;  // runs started with --restart
 };
 
 // Runs `args` into `dir`, killing it `kills` times at random moments (uniform over the part of the uninterrupted
@@ -113,8 +114,10 @@ Interrupted run_with_kills(const std::vector<std::string>& args, const fs::path&
     std::this_thread::sleep_for(std::chrono::duration<double>(when(rng) * wall * (1.0 - done)));
     kill(pid, SIGKILL);
     const int code = wait_for(pid);
-    if (code == -SIGKILL) ++r.kills;
-    else EXPECT_EQ(code, 0) << slurp(dir.string() + ".log");
+    if (code == -SIGKILL)
+      ++r.kills;
+    else
+      EXPECT_EQ(code, 0) << slurp(dir.string() + ".log");
     expect_readable_after_kill(dir);
   }
   const int code = run_to_end(next_args(), dir.string() + ".log");
@@ -163,7 +166,8 @@ TEST(Restart, KilledChannelRunRestartsBitwise) {
       4, 6.0, 20261122, 3, 2);
   // Checkpoints are pruned to the newest `keep`; the final one is among them.
   int count = 0;
-  for (const auto& e : fs::directory_iterator(base / "killed" / "checkpoints")) count += e.path().filename().string().rfind("checkpoint_", 0) == 0;
+  for (const auto& e : fs::directory_iterator(base / "killed" / "checkpoints"))
+    count += e.path().filename().string().rfind("checkpoint_", 0) == 0;
   EXPECT_EQ(count, 2);
   fs::remove_all(base);
 }
@@ -171,22 +175,27 @@ TEST(Restart, KilledChannelRunRestartsBitwise) {
 TEST(Restart, KilledFoundationForceModelRunRestartsBitwise) {
   // The channel scene under the foundation force model, whose first contact step depends on whether the pair
   // touched the step before (the contact history a checkpoint carries): 1.5 s, a checkpoint every 2 frames.
-  fs::remove_all(killed_run_restarts_bitwise(
-      "foundation",
-      {"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=1.5", "--set",
-       "contact.force_model=foundation", "--set", "output.interval=0.125", "--set", "output.checkpoint.every=2",
-       "--set", "output.checkpoint.keep=2"},
-      3, 1.5, 20261126, 2, 1));
+  fs::remove_all(
+      killed_run_restarts_bitwise("foundation",
+                                  {"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=1.5", "--set",
+                                   "contact.force_model=foundation", "--set", "output.interval=0.125", "--set",
+                                   "output.checkpoint.every=2", "--set", "output.checkpoint.keep=2"},
+                                  3, 1.5, 20261126, 2, 1));
 }
 
 TEST(Restart, KilledFrozenSheetRunRestartsBitwise) {
   // A small frozen sheet of triangles squeezed between plates until its bonds break: the bond state (intact points,
   // stresses, broken times) carries across the restarts.
-  const std::vector<std::string> args{
-      "run", kSource + "/dem/scenes/uniaxial_compression.yaml", "--set", "ice_sheet.region=[0,0,60,60]", "--set",
-      "ice_sheet.cell_size=8", "--set", "ice_sheet.bonds.tensile_strength=1e5", "--set",
-      "ice_sheet.bonds.shear_strength=1e5", "--set", "floes.0.position=[-10,30]", "--set", "floes.1.position=[70,30]",
-      "--set", "run.duration=0.3", "--set", "output.interval=0.01", "--set", "output.checkpoint.every=3"};
+  const std::vector<std::string> args{"run",   kSource + "/dem/scenes/uniaxial_compression.yaml",
+                                      "--set", "ice_sheet.region=[0,0,60,60]",
+                                      "--set", "ice_sheet.cell_size=8",
+                                      "--set", "ice_sheet.bonds.tensile_strength=1e5",
+                                      "--set", "ice_sheet.bonds.shear_strength=1e5",
+                                      "--set", "floes.0.position=[-10,30]",
+                                      "--set", "floes.1.position=[70,30]",
+                                      "--set", "run.duration=0.3",
+                                      "--set", "output.interval=0.01",
+                                      "--set", "output.checkpoint.every=3"};
   const fs::path base = scratch("sheet");
   fs::remove_all(base);
   fs::create_directories(base);
@@ -233,8 +242,9 @@ TEST(Restart, KilledWhileWritingHdf5EveryStepLeavesAReadableFile) {
   // must leave every flushed frame readable in results.h5, or (HDF5 does not promise a file its killed writer
   // leaves, and 1 kill in a few hundred here tears a metadata block) every frame of the newest checkpoint readable
   // in the copy taken with it, checkpoints/results.h5.
-  const std::vector<std::string> args{"run", kSource + "/dem/scenes/two_floes.yaml", "--set", "output.vtk=false",
-                                      "--set", "output.interval=1e-4", "--set", "output.checkpoint.every=200"};
+  const std::vector<std::string> args{
+      "run",   kSource + "/dem/scenes/two_floes.yaml", "--set", "output.vtk=false", "--set", "output.interval=1e-4",
+      "--set", "output.checkpoint.every=200"};
   const fs::path out = scratch("h5kill");
   fs::remove_all(out);
   std::vector<std::string> a = args;
@@ -315,7 +325,8 @@ TEST(Restart, UnreadableResultsAreRebuiltFromTheCheckpointsCopy) {
   std::ofstream(dir / "checkpoints/results.h5", std::ios::trunc) << "x";
   EXPECT_EQ(run_to_end(a, dir.string() + ".log"), 2);
   const std::string log = slurp(dir.string() + ".log");
-  EXPECT_NE(log.find("no copy of the interrupted run's results holds the checkpoint's frames"), std::string::npos) << log;
+  EXPECT_NE(log.find("no copy of the interrupted run's results holds the checkpoint's frames"), std::string::npos)
+      << log;
   EXPECT_NE(log.find("checkpoints/results.h5 cannot be read"), std::string::npos) << log;
   fs::remove_all(ref);
   fs::remove_all(dir);
@@ -388,10 +399,10 @@ TEST(Restart, AnotherSpellingOfTheScenePathIsTheSameSceneAndTheSummaryCountsThis
   fs::create_directories(base);
   const std::string scene = kSource + "/dem/scenes/two_floes.yaml";
   const fs::path run = base / "run";
-  ASSERT_EQ(run_to_end({"run", scene, "-o", run.string(), "--set", "output.checkpoint.every=1", "--set",
-                        "run.duration=0.5"},
-                       base / "log"),
-            0)
+  ASSERT_EQ(
+      run_to_end({"run", scene, "-o", run.string(), "--set", "output.checkpoint.every=1", "--set", "run.duration=0.5"},
+                 base / "log"),
+      0)
       << slurp(base / "log");
   // A restart of the finished run has nothing to do, and says so (no rate over zero seconds).
   ASSERT_EQ(run_to_end({"run", scene, "--set", "output.checkpoint.every=1", "--set", "run.duration=0.5", "--restart",
@@ -410,8 +421,8 @@ TEST(Restart, AnotherSpellingOfTheScenePathIsTheSameSceneAndTheSummaryCountsThis
             0)
       << slurp(base / "log");
   const std::string log = slurp(base / "log");
-  EXPECT_NE(log.find("run.duration"), std::string::npos) << log;  // the one real change is listed ...
-  EXPECT_EQ(log.find("# from:"), std::string::npos) << log;     // ... the path's spelling is not
+  EXPECT_NE(log.find("run.duration"), std::string::npos) << log;                 // the one real change is listed ...
+  EXPECT_EQ(log.find("# from:"), std::string::npos) << log;                      // ... the path's spelling is not
   EXPECT_NE(log.find("t = 0.5 -> 1 s simulated in"), std::string::npos) << log;  // this run's part
   fs::remove_all(base);
 }
@@ -429,8 +440,8 @@ TEST(Restart, UnstableRunLeavesItsStateForInspection) {
   EXPECT_GT(c.world.time, 0.0);
   EXPECT_EQ(c.world.ids.size(), 2u);
   // It is not a restart point.
-  const int again = run_to_end({"run", scene, "--restart", (out / "checkpoints" / "unstable.h5").string()},
-                               out.string() + ".log");
+  const int again =
+      run_to_end({"run", scene, "--restart", (out / "checkpoints" / "unstable.h5").string()}, out.string() + ".log");
   EXPECT_EQ(again, 2);
   EXPECT_NE(slurp(out.string() + ".log").find("for inspection"), std::string::npos);
   fs::remove_all(out);

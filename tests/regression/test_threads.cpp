@@ -29,8 +29,8 @@ TEST(Threads, TwoThreadsGiveTheOneThreadRunBitwise) {
       {"run", kSource + "/dem/scenes/channel.yaml", "--set", "run.duration=3", "--set", "output.interval=0.5"},
       {"run", kSource + "/dem/scenes/uniaxial_compression.yaml", "--set", "ice_sheet.region=[0,0,60,60]", "--set",
        "ice_sheet.cell_size=8", "--set", "ice_sheet.bonds.tensile_strength=1e5", "--set",
-       "ice_sheet.bonds.shear_strength=1e5", "--set", "floes.0.position=[-10,30]", "--set",
-       "floes.1.position=[70,30]", "--set", "run.duration=0.2", "--set", "output.interval=0.02"}};
+       "ice_sheet.bonds.shear_strength=1e5", "--set", "floes.0.position=[-10,30]", "--set", "floes.1.position=[70,30]",
+       "--set", "run.duration=0.2", "--set", "output.interval=0.02"}};
   const fs::path base = scratch("threads");
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     fs::remove_all(base);

@@ -29,8 +29,9 @@ inline bonds::BondMaterial material(double tensile = 1.5e6) {
 inline double safe_dt(const dynamics::World& w) {
   std::vector<double> mass, inertia;
   for (std::size_t i = 0; i < w.size(); ++i) {
-    mass.push_back(w.motion(static_cast<int>(i)) == dynamics::Motion::dynamic ? w.mass(static_cast<int>(i))
-                                                                             : std::numeric_limits<double>::infinity());
+    mass.push_back(w.motion(static_cast<int>(i)) == dynamics::Motion::dynamic
+                       ? w.mass(static_cast<int>(i))
+                       : std::numeric_limits<double>::infinity());
     inertia.push_back(w.inertia(static_cast<int>(i)));
   }
   return 0.5 * w.bonds()->critical_time_step(mass, inertia);

@@ -16,8 +16,8 @@ struct CommandResult {
 // Runs `POLYFLOE_BINARY args` through the shell (args are shell words).
 // `env` (e.g. "PATH=/nowhere") sets variables for the command alone.
 inline CommandResult run_polyfloe(const std::string& args, const std::string& env = "") {
-  const std::string cmd = (env.empty() ? std::string() : "env " + env + " ") + std::string(POLYFLOE_BINARY) + " " +
-                          args + " 2>&1";
+  const std::string cmd =
+      (env.empty() ? std::string() : "env " + env + " ") + std::string(POLYFLOE_BINARY) + " " + args + " 2>&1";
   CommandResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;

@@ -47,7 +47,8 @@ inline MethodResult run_contact_method(int m, const MethodInput& p) {
   switch (m) {
     case kPlanar: {
       contact::PlanarContact c;
-      if (contact::planar_overlap(p.a, p.b, c)) r = {MethodStatus::contact, c.depth, in_plane(c.normal), in_plane(c.point)};
+      if (contact::planar_overlap(p.a, p.b, c))
+        r = {MethodStatus::contact, c.depth, in_plane(c.normal), in_plane(c.point)};
       break;
     }
     case kGjk2d: {
@@ -63,8 +64,8 @@ inline MethodResult run_contact_method(int m, const MethodInput& p) {
                           : m == kCcdTie ? contact::CcdMethod::gjk_epa_tiebreak
                                          : contact::CcdMethod::mpr;
       const contact::CcdContact c = contact::ccd_penetration(p.a3, p.b3, method);
-      r = {status(c.status == contact::CcdStatus::contact, c.status == contact::CcdStatus::failed), c.depth,
-           c.normal, c.point, c.reason};
+      r = {status(c.status == contact::CcdStatus::contact, c.status == contact::CcdStatus::failed), c.depth, c.normal,
+           c.point, c.reason};
       break;
     }
     default: {

@@ -11,11 +11,11 @@
 namespace polyfloe::test {
 
 struct CubePlateResult {
-  double v_ratio = 0.0;      // v'/v0, v' positive downwards (Eq. 7's convention)
-  double w_ratio = 0.0;      // |w'| r / v0 [-]
-  double spurious_w = 0.0;   // |w_x| + |w_z| after the impact, r / v0 [-]
-  int manifold_points = 0;   // largest manifold seen during the impact
-  int steps = 0;             // steps in contact
+  double v_ratio = 0.0;        // v'/v0, v' positive downwards (Eq. 7's convention)
+  double w_ratio = 0.0;        // |w'| r / v0 [-]
+  double spurious_w = 0.0;     // |w_x| + |w_z| after the impact, r / v0 [-]
+  int manifold_points = 0;     // largest manifold seen during the impact
+  int steps = 0;               // steps in contact
   bool second_impact = false;  // a second contact started before the first ended
 };
 
@@ -23,8 +23,8 @@ struct CubePlateAnalytic {
   double v_ratio = 0.0, w_ratio = 0.0;
 };
 
-inline constexpr double kCubeEdge = 2.0;        // l [m]
-inline constexpr double kCubeDensity = 920.0;   // [kg/m^3]
+inline constexpr double kCubeEdge = 2.0;       // l [m]
+inline constexpr double kCubeDensity = 920.0;  // [kg/m^3]
 
 // Eq. 6-7 with I_yy = m l^2 / 6 and r = l / sqrt(2).
 inline CubePlateAnalytic cube_plate_analytic(double alpha, double e) {
@@ -38,11 +38,11 @@ inline CubePlateAnalytic cube_plate_analytic(double alpha, double e) {
 }
 
 struct CubePlateSetup {
-  double alpha = 0.0;               // [rad]
-  double v0 = 1.0;                  // [m/s]
-  double youngs_modulus = 1.0e9;    // [Pa]
-  double restitution = 0.5;         // [-]
-  double steps_per_contact = 200.0; // [-]
+  double alpha = 0.0;                // [rad]
+  double v0 = 1.0;                   // [m/s]
+  double youngs_modulus = 1.0e9;     // [Pa]
+  double restitution = 0.5;          // [-]
+  double steps_per_contact = 200.0;  // [-]
   contact::DampingModel damping = contact::DampingModel::speed_independent;
   dynamics::ContactPointModel contact_point = dynamics::ContactPointModel::witness;
   dynamics::SpatialNarrowPhase narrow_phase = dynamics::SpatialNarrowPhase::sat;
@@ -66,8 +66,8 @@ inline dynamics::SpatialWorld make_cube_plate(const CubePlateSetup& s) {
   w.add_body(plate);
   dynamics::SpatialBodyDesc cube;
   cube.id = 2;
-  cube.shape = std::make_shared<geometry::ConvexPolyhedron>(
-      geometry::ConvexPolyhedron::box({kCubeEdge, kCubeEdge, kCubeEdge}));
+  cube.shape =
+      std::make_shared<geometry::ConvexPolyhedron>(geometry::ConvexPolyhedron::box({kCubeEdge, kCubeEdge, kCubeEdge}));
   cube.density = kCubeDensity;
   cube.orientation = dynamics::Quat(Eigen::AngleAxisd(s.alpha, geometry::Vec3::UnitY()));
   double low = 0.0;

@@ -15,14 +15,14 @@
 namespace polyfloe::tsupport {
 
 struct PackSpec {
-  double spacing = 9.0;   // lattice spacing s [m]
-  double jitter = 0.03;   // generator jitter, fraction of s
-  double rho = 0.56;      // circumradius of the 10-gon, fraction of s
-  int corners = 10;       // corners of that polygon
-  double eps = 2e-4;      // relative scaling about the generator (> 0: neighbours overlap)
-  double speed = 0.0;     // random initial speed, uniform in [0, speed] in a random direction [m/s]
+  double spacing = 9.0;  // lattice spacing s [m]
+  double jitter = 0.03;  // generator jitter, fraction of s
+  double rho = 0.56;     // circumradius of the 10-gon, fraction of s
+  int corners = 10;      // corners of that polygon
+  double eps = 2e-4;     // relative scaling about the generator (> 0: neighbours overlap)
+  double speed = 0.0;    // random initial speed, uniform in [0, speed] in a random direction [m/s]
   bool walls = true;
-  bool shuffle = true;    // body order unrelated to position, as in a generated field (largest floe first)
+  bool shuffle = true;  // body order unrelated to position, as in a generated field (largest floe first)
 };
 
 struct Pack {
@@ -138,10 +138,10 @@ inline Pack make_pack(int n_target, const PackSpec& ps, std::uint64_t seed) {
       d.thickness = 1.0;
       pack.bodies.push_back(std::move(d));
     };
-    wall(-t, -t, lx + t, 0.0);        // bottom
-    wall(-t, ly, lx + t, ly + t);     // top
-    wall(-t, 0.0, 0.0, ly);           // left
-    wall(lx, 0.0, lx + t, ly);        // right
+    wall(-t, -t, lx + t, 0.0);     // bottom
+    wall(-t, ly, lx + t, ly + t);  // top
+    wall(-t, 0.0, 0.0, ly);        // left
+    wall(lx, 0.0, lx + t, ly);     // right
   }
   return pack;
 }

@@ -62,7 +62,8 @@ inline std::string slurp(const fs::path& p) {
 }
 
 // Every dataset of the file by path, as raw bytes of its values read as doubles / integers.
-inline void collect(const io::hdf5::Group& g, const std::string& prefix, std::vector<std::pair<std::string, std::vector<std::uint64_t>>>& out) {
+inline void collect(const io::hdf5::Group& g, const std::string& prefix,
+                    std::vector<std::pair<std::string, std::vector<std::uint64_t>>>& out) {
   using io::hdf5::DType;
   for (const io::hdf5::Group::Child& c : g.children()) {
     const std::string name = prefix + "/" + c.name;
@@ -99,7 +100,8 @@ inline std::vector<std::string> vtk_files(const fs::path& dir) {
   std::vector<std::string> out;
   for (const char* sub : {"floes", "contacts", "bonds", "velocity"}) {
     if (!fs::is_directory(dir / sub)) continue;
-    for (const auto& e : fs::directory_iterator(dir / sub)) out.push_back(std::string(sub) + "/" + e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(dir / sub))
+      out.push_back(std::string(sub) + "/" + e.path().filename().string());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -138,7 +140,9 @@ inline void expect_same_run(const fs::path& a, const fs::path& b) {
   ASSERT_EQ(wa.contact_history.size(), wb.contact_history.size());
   for (std::size_t k = 0; k < wa.contact_history.size(); ++k) {
     EXPECT_TRUE(wa.contact_history[k].first == wb.contact_history[k].first);
-    EXPECT_EQ(std::memcmp(&wa.contact_history[k].second, &wb.contact_history[k].second, sizeof(polyfloe::contact::PlanarHistory)), 0);
+    EXPECT_EQ(std::memcmp(&wa.contact_history[k].second, &wb.contact_history[k].second,
+                          sizeof(polyfloe::contact::PlanarHistory)),
+              0);
   }
   ASSERT_EQ(wa.bonds.has_value(), wb.bonds.has_value());
   if (wa.bonds) {

@@ -39,7 +39,8 @@ inline std::vector<Vec2> transform(const std::vector<Vec2>& v, double yaw, const
 
 // Convex hull (Andrew's monotone chain), counter-clockwise, without collinear points.
 inline std::vector<Vec2> convex_hull(std::vector<Vec2> pts) {
-  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  std::sort(pts.begin(), pts.end(),
+            [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   if (pts.size() < 3) return pts;
   std::vector<Vec2> h(2 * pts.size());
   std::size_t k = 0;
@@ -67,8 +68,10 @@ inline bool inside_convex(const std::vector<Vec2>& poly, const Vec2& p, double t
 // Overlap polygon of A and B by brute force: vertices of each inside the other plus all edge crossings, hulled.
 inline std::vector<Vec2> brute_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   std::vector<Vec2> pts;
-  for (const Vec2& p : a) if (inside_convex(b, p, 1e-12)) pts.push_back(p);
-  for (const Vec2& p : b) if (inside_convex(a, p, 1e-12)) pts.push_back(p);
+  for (const Vec2& p : a)
+    if (inside_convex(b, p, 1e-12)) pts.push_back(p);
+  for (const Vec2& p : b)
+    if (inside_convex(a, p, 1e-12)) pts.push_back(p);
   for (std::size_t i = 0; i < a.size(); ++i) {
     const Vec2 p = a[i], r = a[(i + 1) % a.size()] - p;
     for (std::size_t j = 0; j < b.size(); ++j) {

@@ -204,7 +204,7 @@ TEST(BroadPhase, NonFiniteBoxesEnterNoCellAndTheOthersKeepTheirPairs) {
   auto boxes = power_law_boxes(rng, n, 600.0);
   const auto dyn = mostly_dynamic(rng, n, 0.1);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  boxes[3] = {Vec2{nan, 0.0}, Vec2{nan, 1.0}};   // a body whose state became NaN
+  boxes[3] = {Vec2{nan, 0.0}, Vec2{nan, 1.0}};     // a body whose state became NaN
   boxes[50] = {Vec2{-inf, -inf}, Vec2{inf, inf}};  // or infinite
   boxes[51].hi.y() = nan;
   std::vector<contact::CandidatePair> got;
@@ -227,8 +227,8 @@ TEST(BroadPhase, NonFiniteBoxesEnterNoCellAndTheOthersKeepTheirPairs) {
 TEST(BroadPhase, BoxesFarFromTheOriginOrSpanningTheRangeOfDoubles) {
   for (const double far : {1e300, 1e17, -1e200}) {
     SCOPED_TRACE(far);
-    const std::vector<Aabb> boxes{{Vec2{far, far}, Vec2{far, far}}, {Vec2{far, far}, Vec2{far, far}},
-                                  {Vec2{0.0, 0.0}, Vec2{1.0, 1.0}}};
+    const std::vector<Aabb> boxes{
+        {Vec2{far, far}, Vec2{far, far}}, {Vec2{far, far}, Vec2{far, far}}, {Vec2{0.0, 0.0}, Vec2{1.0, 1.0}}};
     const std::vector<std::uint8_t> dyn{1, 1, 1};
     std::vector<contact::CandidatePair> got;
     contact::GridBroadPhase grid;
@@ -239,8 +239,10 @@ TEST(BroadPhase, BoxesFarFromTheOriginOrSpanningTheRangeOfDoubles) {
     EXPECT_EQ(g, brute_pairs(boxes, dyn));
   }
   const double big = 1e308;
-  const std::vector<Aabb> spread{{Vec2{-big, -big}, Vec2{-big, -big}}, {Vec2{big, big}, Vec2{big, big}},
-                                 {Vec2{0.0, 0.0}, Vec2{1.0, 1.0}}, {Vec2{0.5, 0.5}, Vec2{2.0, 2.0}}};
+  const std::vector<Aabb> spread{{Vec2{-big, -big}, Vec2{-big, -big}},
+                                 {Vec2{big, big}, Vec2{big, big}},
+                                 {Vec2{0.0, 0.0}, Vec2{1.0, 1.0}},
+                                 {Vec2{0.5, 0.5}, Vec2{2.0, 2.0}}};
   const std::vector<std::uint8_t> dyn{1, 1, 1, 1};
   std::vector<contact::CandidatePair> got;
   contact::GridBroadPhase grid;

@@ -165,8 +165,7 @@ TEST(BuildWorld, ErrorsNameTheSources) {
   c.channel = ChannelSpec{};
   c.channel->source.where = "c.yaml:20:3";
   m = error_of([&] { build_world(c); });
-  EXPECT_TRUE(starts_with(m, "c.yaml:9:5 (floes.0): overlaps c.yaml:20:3 (channel basin wall (y min)) initially"))
-      << m;
+  EXPECT_TRUE(starts_with(m, "c.yaml:9:5 (floes.0): overlaps c.yaml:20:3 (channel basin wall (y min)) initially")) << m;
   c.bodies[0].motion = dynamics::Motion::fixed;  // fixed bodies may overlap walls
   EXPECT_NO_THROW(build_world(c));
 }

@@ -21,7 +21,8 @@ TEST(Channel, WallsAreConvexTouchingAndLeaveTheOpening) {
   for (const WallPolygon& w : walls) EXPECT_EQ(geometry::convexity_error(w.vertices), "") << w.name;
   for (std::size_t i = 0; i < walls.size(); ++i)
     for (std::size_t j = i + 1; j < walls.size(); ++j)
-      EXPECT_GE(polygon_separation(walls[i].vertices, walls[j].vertices), -1e-9) << walls[i].name << " / " << walls[j].name;
+      EXPECT_GE(polygon_separation(walls[i].vertices, walls[j].vertices), -1e-9)
+          << walls[i].name << " / " << walls[j].name;
 
   auto y_range = [](const WallPolygon& w, double& lo, double& hi) {
     lo = INFINITY;

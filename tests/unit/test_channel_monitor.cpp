@@ -23,10 +23,10 @@ TEST(ChannelMonitor, FluxSpeedAndJam) {
   dynamics::WorldSettings ws;
   ws.drift = forcing::DriftSettings::none();
   dynamics::World w(ws);
-  w.add_body({.id = 1, .shape = square(10), .position = {1395.0, 500.0}, .velocity = {1.0, 0.0}});   // A, 100 m^2
-  w.add_body({.id = 2, .shape = square(20), .position = {1390.0, 560.0}, .velocity = {2.0, 0.0}});   // B, 400 m^2
-  w.add_body({.id = 3, .shape = square(10), .position = {500.0, 500.0}});                            // C, basin
-  w.add_body({.id = 4, .shape = square(10), .position = {1200.0, 300.0}});                           // D, funnel
+  w.add_body({.id = 1, .shape = square(10), .position = {1395.0, 500.0}, .velocity = {1.0, 0.0}});  // A, 100 m^2
+  w.add_body({.id = 2, .shape = square(20), .position = {1390.0, 560.0}, .velocity = {2.0, 0.0}});  // B, 400 m^2
+  w.add_body({.id = 3, .shape = square(10), .position = {500.0, 500.0}});                           // C, basin
+  w.add_body({.id = 4, .shape = square(10), .position = {1200.0, 300.0}});                          // D, funnel
   w.add_body({.id = 5, .shape = square(50), .position = {1300.0, 900.0}, .motion = dynamics::Motion::fixed});
   run::ChannelMonitor m(spec, w);
   EXPECT_EQ(m.gate_x(), 1400.0);

@@ -42,10 +42,12 @@ TEST(ContactCache, ManyEntriesAndRoundTrip) {
   const auto e = c.entries();
   ASSERT_EQ(e.size(), keys.size());
   for (std::size_t i = 1; i < e.size(); ++i)
-    EXPECT_TRUE(e[i - 1].first.lo < e[i].first.lo || (e[i - 1].first.lo == e[i].first.lo && e[i - 1].first.hi < e[i].first.hi));
+    EXPECT_TRUE(e[i - 1].first.lo < e[i].first.lo ||
+                (e[i - 1].first.lo == e[i].first.lo && e[i - 1].first.hi < e[i].first.hi));
   ContactCache d;
   d.restore(e);
-  for (std::size_t i = 0; i < keys.size(); i += 97) EXPECT_EQ(d.previous(make_key(keys[i].first, keys[i].second)), 1.0 + i);
+  for (std::size_t i = 0; i < keys.size(); i += 97)
+    EXPECT_EQ(d.previous(make_key(keys[i].first, keys[i].second)), 1.0 + i);
   EXPECT_EQ(d.entries(), e);
 }
 

@@ -100,14 +100,14 @@ std::vector<Case> base_cases() {
                rotated(rect(1, 1.99, 3, 3), std::numbers::pi / 6, {7.3, -2.1}), Kind::overlapping});
   {
     const Vec2 inward = -geometry::perp_right(pentagon[2] - pentagon[1]).normalized();
-    c.push_back({"parallel edges 2 cm (shared edge pushed in)", pentagon, shifted(on_edge, 0.02 * inward),
-                 Kind::overlapping});
+    c.push_back(
+        {"parallel edges 2 cm (shared edge pushed in)", pentagon, shifted(on_edge, 0.02 * inward), Kind::overlapping});
   }
 
   // Horizontal overlaps of 2 m and 2.3 m with h = 1 m: the 3-D minimum translation is vertical (1 m).
   c.push_back({"deeper than the thickness (2 m)", rect(0, 0, 10, 6), rect(8, 1, 18, 5), Kind::overlapping});
-  c.push_back({"deeper than the thickness (2.3 m, corner)", rect(0, 0, 6, 6), rotated(rect(-3, -3, 3, 3), 0.1, {7.0, 3.0}),
-               Kind::overlapping});
+  c.push_back({"deeper than the thickness (2.3 m, corner)", rect(0, 0, 6, 6),
+               rotated(rect(-3, -3, 3, 3), 0.1, {7.0, 3.0}), Kind::overlapping});
 
   c.push_back({"mixed thickness 1 m / 3 m, 5 cm", rect(0, 0, 4, 2), rect(3.95, 0.5, 8, 1.5), Kind::overlapping,
                floating(1.0), floating(3.0)});
@@ -277,8 +277,8 @@ TEST(ContactFailureModes, ExactMethodsNeverFailOrMiss) {
       // must move no farther than that (where two axes tie, either).
       const double depth = m.planar ? ref.depth2 : ref.depth3;
       EXPECT_NEAR(r.depth, depth, 1e-9 * s.size) << what;
-      const double along = m.planar ? overlap_along(c.a, c.b, Vec2(r.normal.x(), r.normal.y()))
-                                    : overlap_along(s.a3, s.b3, r.normal);
+      const double along =
+          m.planar ? overlap_along(c.a, c.b, Vec2(r.normal.x(), r.normal.y())) : overlap_along(s.a3, s.b3, r.normal);
       EXPECT_LE(along, depth + 1e-9 * s.size) << what << " normal " << r.normal.transpose();
       if (!m.planar) {
         EXPECT_EQ(std::abs(r.normal.z()) > 0.5, ref.vertical) << what;

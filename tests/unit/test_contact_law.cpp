@@ -138,7 +138,8 @@ TEST(ContactLaw, NormalForceElasticAndDamped) {
       EXPECT_LT(fs.normal, f0.normal);
       EXPECT_NEAR(fs.normal, 0.9 * f0.normal, 1e-12 * f0.normal);
       // Separating fast: the force is clamped at zero, never negative (no adhesion).
-      for (double r : {1.0 + 1e-9, 2.0, 1000.0}) EXPECT_EQ(law.evaluate(c, d, -r * 10.0 * small, 0.0, 0.0, 1e-4).normal, 0.0);
+      for (double r : {1.0 + 1e-9, 2.0, 1000.0})
+        EXPECT_EQ(law.evaluate(c, d, -r * 10.0 * small, 0.0, 0.0, 1e-4).normal, 0.0);
     }
     EXPECT_EQ(law.evaluate(c, 0.0, 0.0, 0.0, 0.0, 1e-4).normal, 0.0);
   }
@@ -150,7 +151,7 @@ TEST(ContactLaw, TangentialSpringStickAndSlip) {
   const double d = 4e-3, dt = 1e-3;
   const double fn = c.k_n * std::pow(d, 1.5);
   const double kt = c.k_s * std::sqrt(d);  // k_s d^(kappa - 1)
-  const double s_limit = 0.4 * fn / kt;     // spring stretch at which friction saturates
+  const double s_limit = 0.4 * fn / kt;    // spring stretch at which friction saturates
 
   // Stick: s = s0 + v dt, F_s = -k_s d^0.5 s, spring kept.
   for (double s0 : {0.0, 0.3 * s_limit, -0.5 * s_limit}) {
@@ -203,9 +204,10 @@ TEST(ContactLaw, HertzContactDurationAgainstIntegration) {
         const double closed = contact::hertz_contact_duration(k, m, v);
         const auto [t, exit] =
             integrate_impact([k](double x, double) { return k * std::pow(x, 1.5); }, m, v, closed / 20000.0);
-        std::printf("Hertz duration k %.0e m %.0e v %.1f: closed form %.6e s, integrated %.6e s (%+.2e), exit "
-                    "speed / v = %.8f\n",
-                    k, m, v, closed, t, (closed - t) / t, exit / v);
+        std::printf(
+            "Hertz duration k %.0e m %.0e v %.1f: closed form %.6e s, integrated %.6e s (%+.2e), exit "
+            "speed / v = %.8f\n",
+            k, m, v, closed, t, (closed - t) / t, exit / v);
         EXPECT_NEAR(closed, t, 1e-4 * t);
         EXPECT_NEAR(exit, v, 1e-8 * v);  // undamped: elastic
       }

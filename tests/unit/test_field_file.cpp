@@ -25,8 +25,8 @@ using forcing::GridData;
 class FieldFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = polyfloe::tsupport::scratch_dir("polyfloe_field_file_" +
-                                           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = polyfloe::tsupport::scratch_dir(
+        "polyfloe_field_file_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -89,9 +89,7 @@ std::string error_of(const fs::path& p) {
 TEST_F(FieldFileTest, RefusesMissingForeignAndMalformedFiles) {
   EXPECT_EQ(error_of(dir_ / "none.h5"), (dir_ / "none.h5").string() + ": no such file");
   EXPECT_EQ(error_of(dir_), dir_.string() + ": not a regular file");
-  {
-    std::ofstream(dir_ / "text.h5") << "U = 1 m/s\n";
-  }
+  { std::ofstream(dir_ / "text.h5") << "U = 1 m/s\n"; }
   EXPECT_NE(error_of(dir_ / "text.h5").find((dir_ / "text.h5").string() + ": cannot read"), std::string::npos)
       << error_of(dir_ / "text.h5");
   {
@@ -131,8 +129,9 @@ TEST_F(FieldFileTest, RefusesMissingForeignAndMalformedFiles) {
     h.close();
     return error_of(p);
   };
-  EXPECT_EQ(by_hand("mask.h5", {0.0, 600.0}, {2, 4, 3}),  // y and x swapped
-            (dir_ / "mask.h5").string() + ": /mask has shape [2, 4, 3], expected [nz, ny, nx] = [2, 3, 4] from the axes");
+  EXPECT_EQ(
+      by_hand("mask.h5", {0.0, 600.0}, {2, 4, 3}),  // y and x swapped
+      (dir_ / "mask.h5").string() + ": /mask has shape [2, 4, 3], expected [nz, ny, nx] = [2, 3, 4] from the axes");
   EXPECT_EQ(by_hand("time.h5", {0.0, 0.0}, {2, 3, 4}),
             (dir_ / "time.h5").string() + ": axis t is not strictly increasing at index 1 (0, 0)");
 }
@@ -203,10 +202,12 @@ TEST_F(FieldFileTest, ASceneReadsItsFieldFileRelativeToItsFolder) {
 TEST_F(FieldFileTest, TheFilesLandBecomesWallsAndFloeFieldsKeepOffIt) {
   io::write_field_file(dir_ / "f.h5", sample_file());
   const fs::path scene_file = dir_ / "s.yaml";
-  const std::string field = "{type: file, path: f.h5, outside: clamp, no_water: velocity, no_water_velocity: [0, 0], "
-                            "offset: [100, 0]";
-  std::ofstream(scene_file) << "name: f\nforcing:\n  ocean:\n    field: " + field +
-                                   ", land: walls}\nfloes:\n  - {rectangle: {width: 2, height: 2}, position: [105, 5]}\n";
+  const std::string field =
+      "{type: file, path: f.h5, outside: clamp, no_water: velocity, no_water_velocity: [0, 0], "
+      "offset: [100, 0]";
+  std::ofstream(scene_file)
+      << "name: f\nforcing:\n  ocean:\n    field: " + field +
+             ", land: walls}\nfloes:\n  - {rectangle: {width: 2, height: 2}, position: [105, 5]}\n";
   const dynamics::World w = scene::build_world(scene::read_scene(scene_file));
   ASSERT_EQ(w.size(), 2u);
   EXPECT_EQ(w.motion(1), dynamics::Motion::fixed);
@@ -231,8 +232,9 @@ TEST_F(FieldFileTest, TheFilesLandBecomesWallsAndFloeFieldsKeepOffIt) {
     }
     EXPECT_GT(floes, 20) << land;
   }
-  std::ofstream(scene_file) << "name: f\nforcing:\n  ocean:\n    field: " + field +
-                                   ", land: walls}\nfloes:\n  - {rectangle: {width: 2, height: 2}, position: [129, 19]}\n";
+  std::ofstream(scene_file)
+      << "name: f\nforcing:\n  ocean:\n    field: " + field +
+             ", land: walls}\nfloes:\n  - {rectangle: {width: 2, height: 2}, position: [129, 19]}\n";
   const std::string e = scene::error_of([&] { (void)scene::build_world(scene::read_scene(scene_file)); });
   EXPECT_NE(e.find("(floes.0): lies on the land of " + (dir_ / "f.h5").string()), std::string::npos) << e;
   EXPECT_NE(e.find("move it into the water"), std::string::npos) << e;
@@ -244,30 +246,33 @@ TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
   io::write_field_file(dir_ / "f.h5", sample_file());
   const fs::path scene_file = dir_ / "s.yaml";
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5}");
-  EXPECT_NE(scene_error(scene_file).find("the field file has 2 snapshots (0 to 600 s): say what the field does beyond "
-                                         "them with 'outside' (clamp, cyclic or error)"),
+  EXPECT_NE(scene_error(scene_file)
+                .find("the field file has 2 snapshots (0 to 600 s): say what the field does beyond "
+                      "them with 'outside' (clamp, cyclic or error)"),
             std::string::npos)
       << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: missing.h5, outside: clamp}");
-  EXPECT_NE(scene_error(scene_file).find("s.yaml:4:31: key 'forcing.ocean.field.path': " +
-                                         (dir_ / "missing.h5").string() + ": no such file"),
-            std::string::npos)
+  EXPECT_NE(
+      scene_error(scene_file)
+          .find("s.yaml:4:31: key 'forcing.ocean.field.path': " + (dir_ / "missing.h5").string() + ": no such file"),
+      std::string::npos)
       << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, no_water: velocity}");
-  EXPECT_NE(scene_error(scene_file).find("no_water: velocity needs no_water_velocity: [u, v] [m/s]"),
-            std::string::npos)
+  EXPECT_NE(scene_error(scene_file).find("no_water: velocity needs no_water_velocity: [u, v] [m/s]"), std::string::npos)
       << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: error}") + "run: {duration: 700}\n";
-  EXPECT_NE(scene_error(scene_file).find("key 'forcing.ocean.field.path': the file's snapshots cover [0, 600] s but the "
-                                         "run spans [0, 700] s with outside: error; import more snapshots or choose "
-                                         "clamp or cyclic"),
+  EXPECT_NE(scene_error(scene_file)
+                .find("key 'forcing.ocean.field.path': the file's snapshots cover [0, 600] s but the "
+                      "run spans [0, 700] s with outside: error; import more snapshots or choose "
+                      "clamp or cyclic"),
             std::string::npos)
       << scene_error(scene_file);
   // time_offset moves the run's span in the file's time.
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: error, time_offset: 100}") +
                                    "run: {duration: 550}\n";
-  EXPECT_NE(scene_error(scene_file).find("the file's snapshots cover [0, 600] s but the run spans [100, 650] s of the "
-                                         "file's time (time_offset 100 s) with outside: error"),
+  EXPECT_NE(scene_error(scene_file)
+                .find("the file's snapshots cover [0, 600] s but the run spans [100, 650] s of the "
+                      "file's time (time_offset 100 s) with outside: error"),
             std::string::npos)
       << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: error, offset: [1, .nan]}");
@@ -275,9 +280,10 @@ TEST_F(FieldFileTest, SceneErrorsNameTheKeyAndTheFile) {
   std::ofstream(scene_file) << scene_with_field("{type: file, outside: clamp}");
   EXPECT_NE(scene_error(scene_file).find("missing required key 'path'"), std::string::npos) << scene_error(scene_file);
   std::ofstream(scene_file) << scene_with_field("{type: file, path: f.h5, outside: clamp, velocity: [1, 0]}");
-  EXPECT_NE(scene_error(scene_file).find("unknown key 'forcing.ocean.field.velocity'; allowed in "
-                                         "'forcing.ocean.field': type, path, outside, no_water, no_water_velocity, offset, "
-                                         "time_offset, land"),
+  EXPECT_NE(scene_error(scene_file)
+                .find("unknown key 'forcing.ocean.field.velocity'; allowed in "
+                      "'forcing.ocean.field': type, path, outside, no_water, no_water_velocity, offset, "
+                      "time_offset, land"),
             std::string::npos)
       << scene_error(scene_file);
 }
@@ -295,8 +301,8 @@ TEST_F(FieldFileTest, AFloeOutsideTheWaterIsRefusedAtTheStartAndStopsTheRunWhenI
     (void)scene::build_world(scene_at("[29, 19]", "[0, 0]"));
     FAIL() << "a floe on land was accepted";
   } catch (const scene::SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("body 0 starts where the ocean field has no water: " +
-                                         (dir_ / "f.h5").string() + ": no water at ("),
+    EXPECT_NE(std::string(e.what()).find(
+                  "body 0 starts where the ocean field has no water: " + (dir_ / "f.h5").string() + ": no water at ("),
               std::string::npos)
         << e.what();
   }

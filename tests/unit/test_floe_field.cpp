@@ -321,8 +321,8 @@ TEST(FloeField, PaperField50And60Percent) {  // (speed: tests/bench/bench_floe_f
   for (double c : {0.5, 0.6}) {
     const FloeFieldSpec s = paper_spec(c);
     const FloeField f = generate_floe_field(s, 920.0, 0);
-    std::printf("1 km x 1 km field at %.0f %%: %zu floes, concentration %.6f, %llu attempts\n", 100 * c,
-                f.floes.size(), f.concentration, static_cast<unsigned long long>(f.attempts));
+    std::printf("1 km x 1 km field at %.0f %%: %zu floes, concentration %.6f, %llu attempts\n", 100 * c, f.floes.size(),
+                f.concentration, static_cast<unsigned long long>(f.attempts));
     SCOPED_TRACE(c);
     expect_valid_field(s, f, true);
     if (c == 0.5) {
@@ -452,8 +452,8 @@ TEST(FieldStatistics, PaperCircularitiesForTheCornerRanges) {
 TEST(FieldStatistics, GeneratedFieldsMatchTheirSpec) {
   // The paper's settings (50 / 55 / 60 %, alpha = 2; alpha = 1.2 and 1.6 at 50 %), three seeds each: the
   // concentration within 0.5 % absolute, the fitted exponent within three standard errors, no overlaps.
-  for (const auto& [c, alpha] : {std::pair{0.5, 2.0}, std::pair{0.55, 2.0}, std::pair{0.6, 2.0}, std::pair{0.5, 1.2},
-                                 std::pair{0.5, 1.6}}) {
+  for (const auto& [c, alpha] :
+       {std::pair{0.5, 2.0}, std::pair{0.55, 2.0}, std::pair{0.6, 2.0}, std::pair{0.5, 1.2}, std::pair{0.5, 1.6}}) {
     for (std::uint64_t seed : {1u, 2u, 3u}) {
       FloeFieldSpec s = paper_spec(c);
       s.exponent = alpha;

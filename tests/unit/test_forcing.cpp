@@ -90,10 +90,10 @@ TEST(Fields, TidalAndTimeSeries) {
   EXPECT_NEAR((at(ts, {}, 5.0) - Vec2(0.5, 1.0)).norm(), 0.0, 1e-15);
   EXPECT_NEAR((at(ts, {}, 20.0) - Vec2(2.0, 0.0)).norm(), 0.0, 1e-15);
   EXPECT_EQ(at(ts, {}, 30.0), Vec2(3.0, -2.0));
-  EXPECT_EQ(at(ts, {}, 45.0), Vec2(3.0, -2.0));   // clamp
+  EXPECT_EQ(at(ts, {}, 45.0), Vec2(3.0, -2.0));  // clamp
   EXPECT_EQ(at(ts, {}, -5.0), Vec2(0.0, 0.0));
   ts.outside = forcing::TimeBoundary::cyclic;
-  EXPECT_NEAR((at(ts, {}, 35.0) - Vec2(0.5, 1.0)).norm(), 0.0, 1e-14);  // 35 -> 5
+  EXPECT_NEAR((at(ts, {}, 35.0) - Vec2(0.5, 1.0)).norm(), 0.0, 1e-14);   // 35 -> 5
   EXPECT_NEAR((at(ts, {}, -25.0) - Vec2(0.5, 1.0)).norm(), 0.0, 1e-14);  // -25 -> 5
   ts.outside = forcing::TimeBoundary::error;
   EXPECT_NO_THROW(at(ts, {}, 30.0));
@@ -171,8 +171,8 @@ TEST(Quadrature, ExactToItsDegree) {
     const int n = 3 + trial % 12;
     const auto poly = tsupport::transform(tsupport::random_convex(rng, n, 30.0, 12.0), 0.4 * trial, {3.0, -7.0});
     const double area = monomial_integral(poly, 0, 0);
-    for (Quadrature q : {Quadrature::centroid, Quadrature::degree1, Quadrature::degree2, Quadrature::degree4,
-                         Quadrature::degree5}) {
+    for (Quadrature q :
+         {Quadrature::centroid, Quadrature::degree1, Quadrature::degree2, Quadrature::degree4, Quadrature::degree5}) {
       std::vector<forcing::QuadraturePoint> pts;
       forcing::polygon_quadrature(poly, q, pts);
       ASSERT_EQ(static_cast<int>(pts.size()), forcing::quadrature_points(q, n));
@@ -186,8 +186,10 @@ TEST(Quadrature, ExactToItsDegree) {
           const double exact = monomial_integral(poly, a, b);
           // Scale of the integrand: area x (size)^deg.
           const double scale = area * std::pow(40.0, deg);
-          if (deg <= p) EXPECT_NEAR(s, exact, 1e-12 * scale) << to_string(q) << " x^" << a << " y^" << b;
-          else worst_higher = std::max(worst_higher, std::abs(s - exact) / scale);
+          if (deg <= p)
+            EXPECT_NEAR(s, exact, 1e-12 * scale) << to_string(q) << " x^" << a << " y^" << b;
+          else
+            worst_higher = std::max(worst_higher, std::abs(s - exact) / scale);
         }
       }
       EXPECT_GT(worst_higher, 1e-9) << to_string(q) << ": exact beyond its degree?";
@@ -268,7 +270,8 @@ Eigen::Matrix3d jacobian(const LoadOf& f, const forcing::FloeMotion& m0, double 
     }
     const forcing::DriftLoad la = f(a), lb = f(b);
     jac.col(k) = -(Eigen::Vector3d(la.force.x(), la.force.y(), la.torque) -
-                   Eigen::Vector3d(lb.force.x(), lb.force.y(), lb.torque)) / (2 * step);
+                   Eigen::Vector3d(lb.force.x(), lb.force.y(), lb.torque)) /
+                 (2 * step);
   }
   return jac;
 }
@@ -278,7 +281,8 @@ TEST(DriftKernels, DampingIsTheJacobian) {
   // differences, 1e-7 relative); D symmetric and positive definite.
   std::mt19937_64 rng(11);
   // A triangle with degree1 (3 samples: the one-at-a-time path) and a 7-gon with degree2 (14: the SIMD path).
-  for (const auto& [nv, rule] : {std::pair{3, forcing::Quadrature::degree1}, std::pair{7, forcing::Quadrature::degree2}}) {
+  for (const auto& [nv, rule] :
+       {std::pair{3, forcing::Quadrature::degree1}, std::pair{7, forcing::Quadrature::degree2}}) {
     const auto v = tsupport::random_convex(rng, nv, 20.0, 14.0);
     std::vector<forcing::QuadraturePoint> qp;
     forcing::polygon_quadrature(v, rule, qp);
@@ -342,7 +346,7 @@ TEST(DriftKernels, DampingIsTheJacobian) {
 TEST(DriftKernels, MomentDragAndCoriolis) {
   forcing::DriftLoad load;
   forcing::add_moment_drag(load, 0.14, 1025.0, 36.0, 5.0, -0.2);
-  EXPECT_NEAR(load.torque, 0.5 * 0.14 * 1025.0 * 36.0 * 125.0 * 0.04, 1e-9);  // opposes omega_rel < 0
+  EXPECT_NEAR(load.torque, 0.5 * 0.14 * 1025.0 * 36.0 * 125.0 * 0.04, 1e-9);    // opposes omega_rel < 0
   EXPECT_NEAR(load.dww, 2.0 * 0.5 * 0.14 * 1025.0 * 36.0 * 125.0 * 0.2, 1e-9);  // d(-k|x|x)/dx = -2k|x|
 
   forcing::DriftSettings s;
@@ -357,7 +361,7 @@ TEST(DriftKernels, MomentDragAndCoriolis) {
   forcing::DriftLoad c;
   forcing::add_coriolis(c, 1000.0, 1e-4, {0.3, 0.4});
   EXPECT_NEAR((c.force - Vec2(1000.0 * 1e-4 * 0.4, -1000.0 * 1e-4 * 0.3)).norm(), 0.0, 1e-15);  // to the right
-  EXPECT_NEAR(c.force.dot(Vec2(0.3, 0.4)), 0.0, 1e-15);  // does no work
+  EXPECT_NEAR(c.force.dot(Vec2(0.3, 0.4)), 0.0, 1e-15);                                         // does no work
 }
 
 }  // namespace

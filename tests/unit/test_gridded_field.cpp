@@ -52,8 +52,8 @@ Vec2 multilinear(const Vec3& p, double t) {
 TEST(GriddedField, ExactForMultilinearFieldsOnUniformAndNonUniformAxes) {
   // x uniform (fast path), y stretched (binary search), three z levels, three snapshots unevenly spaced.
   const std::vector<double> y{0.0, 10.0, 35.0, 80.0, 150.0, 200.0};
-  const GriddedField f = field_of(
-      make_grid(axis(-100.0, 400.0, 11), y, {-3.0, -1.0, -0.2}, {0.0, 60.0, 200.0}, multilinear));
+  const GriddedField f =
+      field_of(make_grid(axis(-100.0, 400.0, 11), y, {-3.0, -1.0, -0.2}, {0.0, 60.0, 200.0}, multilinear));
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> ux(-100.0, 400.0), uy(0.0, 200.0), uz(-3.0, -0.2), ut(0.0, 200.0);
   double worst = 0.0;
@@ -124,7 +124,7 @@ TEST(GriddedField, TimeBoundaries) {
     FAIL() << "no error past the last snapshot";
   } catch (const FieldError& e) {
     EXPECT_NE(std::string(e.what()).find("test.h5: time 400.5 s is outside the field's snapshots [100, 400] s"),
-        std::string::npos)
+              std::string::npos)
         << e.what();
   }
   // One snapshot: steady, whatever the boundary.

@@ -91,8 +91,8 @@ TEST(IceSheet, ShortEdgesAreCollapsed) {
     for (std::size_t j = 0; j < c.size(); ++j) {
       const Vec2 a = c[j], b = c[(j + 1) % c.size()];
       ++edges;
-      const bool along_side = (a.x() == b.x() && (a.x() == 0.0 || a.x() == 400.0)) ||
-                              (a.y() == b.y() && (a.y() == 0.0 || a.y() == 400.0));
+      const bool along_side =
+          (a.x() == b.x() && (a.x() == 0.0 || a.x() == 400.0)) || (a.y() == b.y() && (a.y() == 0.0 || a.y() == 400.0));
       if (along_side) continue;
       least = std::min(least, (a - b).norm());
       if ((a - b).norm() < shortest) ++short_inside;
@@ -149,8 +149,9 @@ TEST(IceSheet, BodiesAndErrors) {
 }
 
 TEST(IceSheetScene, BlockKeysRoundTripAndErrors) {
-  const std::string sheet = "ice_sheet: {region: [0, 0, 100, 60], cell_size: 8, relaxation: 2, thickness: 0.5, "
-                            "velocity: [0.2, 0], seed: 9}\n";
+  const std::string sheet =
+      "ice_sheet: {region: [0, 0, 100, 60], cell_size: 8, relaxation: 2, thickness: 0.5, "
+      "velocity: [0.2, 0], seed: 9}\n";
   const Scene s = parse_scene(sheet, "t.yaml", {});  // the sheet alone is enough dynamic ice
   ASSERT_TRUE(s.ice_sheet.has_value());
   EXPECT_EQ(s.ice_sheet->cell_size, 8.0);
@@ -173,8 +174,9 @@ TEST(IceSheetScene, BlockKeysRoundTripAndErrors) {
   m = parse_error("ice_sheet: {relaxation: -1}\n");
   EXPECT_TRUE(contains(m, "key 'ice_sheet.relaxation'")) << m;
   m = parse_error("ice_sheet: {cells: 10}\n");
-  EXPECT_TRUE(contains(m, "unknown key 'ice_sheet.cells'; allowed in 'ice_sheet': region, cell_size, relaxation, "
-                          "thickness, velocity, seed, elements, bonds"))
+  EXPECT_TRUE(contains(m,
+                       "unknown key 'ice_sheet.cells'; allowed in 'ice_sheet': region, cell_size, relaxation, "
+                       "thickness, velocity, seed, elements, bonds"))
       << m;
   // Elements and bonds.
   const Scene frozen = parse_scene(
@@ -204,8 +206,9 @@ TEST(IceSheetScene, BlockKeysRoundTripAndErrors) {
   EXPECT_TRUE(contains(m, "unknown key 'ice_sheet.bonds.strength'")) << m;
 
   // A body inside the sheet is refused, naming both.
-  const Scene clash = parse_scene(sheet + "floes:\n  - {regular: {sides: 4, radius: 3}, position: [50, 30], "
-                                          "motion: fixed}\n",
+  const Scene clash = parse_scene(sheet +
+                                      "floes:\n  - {regular: {sides: 4, radius: 3}, position: [50, 30], "
+                                      "motion: fixed}\n",
                                   "c.yaml", {});
   m = error_of([&] { build_world(clash); });
   EXPECT_TRUE(contains(m, "(ice_sheet element") && contains(m, "overlaps c.yaml:3:5 (floes.0) initially")) << m;

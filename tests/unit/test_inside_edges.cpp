@@ -63,8 +63,8 @@ TEST(InsideAllEdges, EveryVariantGivesTheFormulasAnswer) {
     for (int poly_index = 0; poly_index < 20; ++poly_index) {
       const double r = 2.0 + 48.0 * u(rng);
       const Vec2 where{5000.0 * (2.0 * u(rng) - 1.0), 5000.0 * (2.0 * u(rng) - 1.0)};
-      const auto poly = tsupport::transform(tsupport::random_convex(rng, n, r, r * (0.3 + 0.7 * u(rng))),
-                                            6.3 * u(rng), where);
+      const auto poly =
+          tsupport::transform(tsupport::random_convex(rng, n, r, r * (0.3 + 0.7 * u(rng))), 6.3 * u(rng), where);
       const Vec2 origin = where + r * Vec2{2.0 * u(rng) - 1.0, 2.0 * u(rng) - 1.0};
       std::vector<Vec2> points;
       for (int k = 0; k < 40; ++k) points.push_back(where + 1.2 * r * Vec2{2.0 * u(rng) - 1.0, 2.0 * u(rng) - 1.0});

@@ -47,8 +47,7 @@ class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("polyfloe_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    path_ = fs::temp_directory_path() / ("polyfloe_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
@@ -295,8 +294,8 @@ TEST(IoWriters, ThreeFramesReadBack) {
     auto pd = read_vtp(dir.path() / "vtk" / name);
     ASSERT_EQ(pd->GetNumberOfPoints(), static_cast<vtkIdType>(frames[f].contacts));
     EXPECT_EQ(pd->GetNumberOfVerts(), static_cast<vtkIdType>(frames[f].contacts));
-    for (const char* a : {"force", "normal_force", "tangential_force", "normal", "depth", "overlap_area", "id_a",
-                          "id_b", "sliding"}) {
+    for (const char* a :
+         {"force", "normal_force", "tangential_force", "normal", "depth", "overlap_area", "id_a", "id_b", "sliding"}) {
       EXPECT_TRUE(pd->GetPointData()->GetArray(a)) << a;
     }
   }
@@ -387,12 +386,12 @@ TEST(IoWriters, ThreeFramesReadBack) {
   for (const char* a : {"scene_path", "scene_text", "code_version", "overrides", "dt", "created_by"}) {
     EXPECT_TRUE(h5_has_attr(file, "/", a)) << a;
   }
-  for (const char* d : {"/time", "/floes/id", "/floes/thickness", "/floes/mass", "/floes/inertia", "/floes/motion",
-                        "/floes/polygon_offsets", "/floes/polygon_xy", "/state/position", "/state/orientation",
-                        "/state/velocity", "/state/angular_velocity", "/diagnostics/kinetic_energy",
-                        "/diagnostics/contact_count", "/diagnostics/max_speed", "/diagnostics/mean_speed",
-                        "/diagnostics/max_overlap_depth", "/diagnostics/linear_momentum",
-                        "/diagnostics/angular_momentum"}) {
+  for (const char* d :
+       {"/time", "/floes/id", "/floes/thickness", "/floes/mass", "/floes/inertia", "/floes/motion",
+        "/floes/polygon_offsets", "/floes/polygon_xy", "/state/position", "/state/orientation", "/state/velocity",
+        "/state/angular_velocity", "/diagnostics/kinetic_energy", "/diagnostics/contact_count",
+        "/diagnostics/max_speed", "/diagnostics/mean_speed", "/diagnostics/max_overlap_depth",
+        "/diagnostics/linear_momentum", "/diagnostics/angular_momentum"}) {
     EXPECT_TRUE(h5_has_attr(file, d, "units")) << d;
   }
   H5Fclose(file);
@@ -460,7 +459,7 @@ TEST(Hdf5File, SeriesRoundTripAndErrorsNameTheObject) {
     auto s = g.create_series("s", io::hdf5::DType::i64, {2, 3}, 4);
     std::vector<std::int64_t> rows(2 * 2 * 3);
     for (std::size_t k = 0; k < rows.size(); ++k) rows[k] = static_cast<std::int64_t>(k);
-    s.append<std::int64_t>(rows);                                     // 2 rows
+    s.append<std::int64_t>(rows);                                          // 2 rows
     s.append<std::int64_t>(std::span<const std::int64_t>(rows).first(6));  // 1 row
     EXPECT_EQ(s.dims(), (io::hdf5::Dims{3, 2, 3}));
     EXPECT_THROW(s.append<std::int64_t>(std::span<const std::int64_t>(rows).first(5)), io::hdf5::Hdf5Error);
@@ -515,8 +514,15 @@ TEST(IoWriters, BondsAndBoundaryForcesReadBack) {
   w.add_body({.id = 10, .shape = sq, .position = {0, 0}, .motion = dynamics::Motion::fixed});
   w.add_body({.id = 11, .shape = sq, .position = {10, 0}});
   bonds::BondSet b(bonds::BondMaterial{.points_per_face = 3});
-  b.add_face({.a = 0, .b = 1, .id_a = 10, .id_b = 11, .p0 = {5, -5}, .p1 = {5, 5}, .thickness = 1.0,
-              .centre_a = {0, 0}, .centre_b = {10, 0}});
+  b.add_face({.a = 0,
+              .b = 1,
+              .id_a = 10,
+              .id_b = 11,
+              .p0 = {5, -5},
+              .p1 = {5, 5},
+              .thickness = 1.0,
+              .centre_a = {0, 0},
+              .centre_b = {10, 0}});
   w.set_bonds(std::move(b));
   const double F = 1.0e5;  // [N]: sigma = F / (10 m x 1 m) = 10 kPa once settled
   w.set_external_load(1, {F, 0.0}, 0.0);

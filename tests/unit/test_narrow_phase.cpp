@@ -238,8 +238,8 @@ TEST(NarrowPhase, ConcentricPolygonsOverlap) {
   PlanarContact c;
   ASSERT_TRUE(contact::planar_overlap(sq, sq, c, true));
   EXPECT_NEAR(c.area, 100.0, 1e-9);
-  EXPECT_EQ(c.chord, 0.0);           // containment fallback
-  EXPECT_NEAR(c.depth, 10.0, 1e-9);  // least penetration: the full width
+  EXPECT_EQ(c.chord, 0.0);                                               // containment fallback
+  EXPECT_NEAR(c.depth, 10.0, 1e-9);                                      // least penetration: the full width
   const std::vector<Vec2> diamond = {{0, -2}, {2, 0}, {0, 2}, {-2, 0}};  // same vertex mean, inside sq
   ASSERT_TRUE(contact::planar_overlap(sq, diamond, c));
   EXPECT_NEAR(c.area, 8.0, 1e-12);

@@ -96,7 +96,7 @@ Mtd2 exact_mtd(const std::vector<Vec2>& pa, const std::vector<Vec2>& pb) {
 std::vector<Vec2> random_polygon(std::mt19937_64& rng, const Vec2& centre, int vertices) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const int k = vertices > 0 ? vertices : 5 + static_cast<int>(u(rng) * 16.0);
-  const double a = 0.5 * 5.0 * std::pow(20.0, u(rng));            // width 5..100 m
+  const double a = 0.5 * 5.0 * std::pow(20.0, u(rng));  // width 5..100 m
   const double b = a * (0.3 + 0.7 * u(rng));
   const double phi = 2.0 * std::numbers::pi * u(rng);
   const Eigen::Rotation2Dd rot(phi);
@@ -160,8 +160,8 @@ TEST(NarrowPhaseCcd, CubesOverlappingAlongEachAxis) {
         shift[(k + 1) % 3] = 0.3;
         shift[(k + 2) % 3] = 0.2;
         const auto b = moved(a, Mat3::Identity(), shift);
-        const std::string what = std::string(to_string(m)) + " axis " + std::to_string(k) + " sign " +
-                                 std::to_string(sign);
+        const std::string what =
+            std::string(to_string(m)) + " axis " + std::to_string(k) + " sign " + std::to_string(sign);
         const CcdContact c = ccd_penetration(a, b, m);
         expect_contact(c, 0.1, sign * Vec3::Unit(k), 1e-6, what);
         // Moving B by depth * normal separates; by less it still overlaps (the sign check, stated directly).
@@ -224,8 +224,7 @@ TEST(NarrowPhaseCcd, SeparatedPairs) {
   const auto a = box(Vec3::Zero(), Vec3::Ones());
   for (const CcdMethod m : kMethods) {
     EXPECT_EQ(ccd_penetration(a, moved(a, Mat3::Identity(), Vec3(1.1, 0.3, 0.2)), m).status, CcdStatus::separated);
-    EXPECT_EQ(ccd_penetration(a, moved(a, Mat3::Identity(), Vec3(1.05, 1.05, 1.05)), m).status,
-              CcdStatus::separated);
+    EXPECT_EQ(ccd_penetration(a, moved(a, Mat3::Identity(), Vec3(1.05, 1.05, 1.05)), m).status, CcdStatus::separated);
     EXPECT_EQ(ccd_penetration(a, moved(a, Mat3::Identity(), Vec3(0.0, 0.0, 50.0)), m).status, CcdStatus::separated);
   }
 }
@@ -327,11 +326,16 @@ TEST(NarrowPhaseCcd, LevelFloes) {
       expect_well_formed(c);
       calls += c.support_calls;
       max_calls = std::max(max_calls, c.support_calls);
-      if (c.status == CcdStatus::failed) ++failed;
-      else if (c.status == CcdStatus::separated) ++missed;
-      else if (c.normal.dot(p.normal) < cos_1deg) ++wrong_normal;
-      else if (std::abs(c.depth - p.depth) > 1e-4) ++wrong_depth;
-      else ++right;
+      if (c.status == CcdStatus::failed)
+        ++failed;
+      else if (c.status == CcdStatus::separated)
+        ++missed;
+      else if (c.normal.dot(p.normal) < cos_1deg)
+        ++wrong_normal;
+      else if (std::abs(c.depth - p.depth) > 1e-4)
+        ++wrong_depth;
+      else
+        ++right;
     }
     wrong[mi] = missed + wrong_normal + wrong_depth;
     failures[mi] = failed;

@@ -61,7 +61,7 @@ Poly random_on_circle(std::mt19937_64& rng, int n, double r) {
 }
 
 struct Axis {
-  double overlap = 0.0;  // max_A n·x - min_B n·x [m]; > 0 overlapping along n
+  double overlap = 0.0;   // max_A n·x - min_B n·x [m]; > 0 overlapping along n
   Vec2 normal{1.0, 0.0};  // from A to B
 };
 
@@ -187,8 +187,8 @@ TEST(Gjk2d, SmallTriangleIntoBigSquareEdge) {
 // planar method measures area / chord of the overlap hexagon instead: the same normal (by symmetry) and the depth
 // (s d + d^2 / (2 tan 30°)) / (s + d / tan 30°) for side s, which tends to d as d / s -> 0.
 TEST(Gjk2d, TwelveGonsAgainstPlanar) {
-  const double r = 10.0;                                  // circumradius [m]
-  const double h = r * std::cos(std::numbers::pi / 12);   // apothem [m]
+  const double r = 10.0;                                 // circumradius [m]
+  const double h = r * std::cos(std::numbers::pi / 12);  // apothem [m]
   const double side = 2.0 * r * std::sin(std::numbers::pi / 12);
   const double t30 = std::tan(std::numbers::pi / 6);
   for (double yaw : {0.0, 0.4, 1.3}) {
@@ -220,8 +220,8 @@ TEST(Gjk2d, TwelveGonsAgainstPlanar) {
 
 TEST(Gjk2d, SeparatedAndTouching) {
   const Poly a = box({0, 0}, 1, 1);
-  EXPECT_EQ(gjk_epa_2d(a, box({2.5, 0.3}, 1, 1)).status, Gjk2dStatus::separated);       // 0.5 m gap
-  EXPECT_EQ(gjk_epa_2d(a, box({100, -40}, 1, 1)).status, Gjk2dStatus::separated);       // far
+  EXPECT_EQ(gjk_epa_2d(a, box({2.5, 0.3}, 1, 1)).status, Gjk2dStatus::separated);         // 0.5 m gap
+  EXPECT_EQ(gjk_epa_2d(a, box({100, -40}, 1, 1)).status, Gjk2dStatus::separated);         // far
   EXPECT_EQ(gjk_epa_2d(a, box({2.0 + 1e-9, 0.3}, 1, 1)).status, Gjk2dStatus::separated);  // 1 nm gap
   // Exactly touching: face on face, corner on corner, face on face flush, vertex on face.
   EXPECT_EQ(gjk_epa_2d(a, box({2.0, 0.3}, 1, 1)).status, Gjk2dStatus::separated);
@@ -377,9 +377,10 @@ TEST(Gjk2d, RandomPairsAgainstSeparatingAxes) {
     EXPECT_LE(outside(b, r.point), 0.5 * r.depth + tol) << "pair " << it;
   }
   EXPECT_GT(contacts, pairs / 2);
-  std::printf("contacts %d (%d deep), separated %d, touching within tolerance %d, near ties %d; worst depth error "
-              "%.2e of size, worst angle %.2e rad; most iterations %d\n",
-              contacts, deep_contacts, separated, ambiguous, near_ties, worst_depth, worst_angle, max_iterations);
+  std::printf(
+      "contacts %d (%d deep), separated %d, touching within tolerance %d, near ties %d; worst depth error "
+      "%.2e of size, worst angle %.2e rad; most iterations %d\n",
+      contacts, deep_contacts, separated, ambiguous, near_ties, worst_depth, worst_angle, max_iterations);
 }
 
 // The iteration bounds are honoured: a generic 12-gon pair needs several EPA steps; with one it fails, as it does

@@ -137,7 +137,7 @@ TEST(OverlapTopology, PairsApartKeepTheirSeparatingEdge) {
                                  2.0 * std::numbers::pi * u(rng), where + (ra + rb) * dir);
     PlanarContact g;
     while (!contact::planar_overlap(a, b, g)) b = moved(b, -0.002 * rb * dir, 0.0);  // walk in until they touch,
-    b = moved(b, 0.003 * rb * dir, 0.0);                                              // then back out a little
+    b = moved(b, 0.003 * rb * dir, 0.0);                                             // then back out a little
     OverlapTopology kept;
     for (int step = 0; step < 30; ++step) {
       const double s = 2e-4 * u(rng), th = 2.0 * std::numbers::pi * u(rng);
@@ -179,8 +179,10 @@ TEST(OverlapTopology, AnyTopologyPassedInGivesTheFreshResult) {
           for (int j1 = 0; j1 <= nb; ++j1)
             for (int j2 = 0; j2 <= nb; ++j2) {
               for (const int apart : {-1, 0, 1}) {
-                OverlapTopology t{static_cast<std::int8_t>(i1), static_cast<std::int8_t>(i2),
-                                  static_cast<std::int8_t>(j1), static_cast<std::int8_t>(j2),
+                OverlapTopology t{static_cast<std::int8_t>(i1),
+                                  static_cast<std::int8_t>(i2),
+                                  static_cast<std::int8_t>(j1),
+                                  static_cast<std::int8_t>(j2),
                                   static_cast<std::int8_t>(apart == 0 ? i1 : -1),
                                   static_cast<std::int8_t>(apart == 1 ? j1 : -1)};
                 const std::string err = compare(a, b, t, nullptr);

@@ -99,8 +99,8 @@ TEST(Manifold, FaceOnFaceGivesFourPointsAndACentredForce) {
   const auto plate = ConvexPolyhedron::box({10.0, 10.0, 1.0});
   const auto cube = ConvexPolyhedron::box({2.0, 2.0, 2.0});
   const Mat3 id = Mat3::Identity();
-  const auto wp = world(plate, id, {0.0, 0.0, -0.5});     // top face at z = 0
-  const auto wc = world(cube, id, {0.3, -0.2, 0.99});     // 1 cm into the plate
+  const auto wp = world(plate, id, {0.0, 0.0, -0.5});  // top face at z = 0
+  const auto wc = world(cube, id, {0.3, -0.2, 0.99});  // 1 cm into the plate
   const auto m = polyfloe::contact::clip_manifold(plate, id, wp, cube, id, wc, Vec3::UnitZ());
   ASSERT_EQ(m.count, 4);
   EXPECT_NEAR(m.max_depth(), 0.01, 1e-12);

@@ -25,7 +25,8 @@ dynamics::World floes(int n, const Vec2& velocity) {
   dynamics::World w(ws);
   const auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
   for (int i = 0; i < n; ++i)
-    w.add_body({.id = static_cast<dynamics::BodyId>(100 + i), .shape = sq, .position = {20.0 * i, 0.0}, .velocity = velocity});
+    w.add_body(
+        {.id = static_cast<dynamics::BodyId>(100 + i), .shape = sq, .position = {20.0 * i, 0.0}, .velocity = velocity});
   return w;
 }
 
@@ -40,9 +41,7 @@ std::string guard_message(const dynamics::World& w, double dt, double v_ref) {
 
 }  // namespace
 
-TEST(RunGuard, QuietStatePasses) {
-  EXPECT_EQ(guard_message(floes(50, {2.0, 0.0}), 1e-3, 1.0), "");
-}
+TEST(RunGuard, QuietStatePasses) { EXPECT_EQ(guard_message(floes(50, {2.0, 0.0}), 1e-3, 1.0), ""); }
 
 TEST(RunGuard, NonFiniteStateNamesTheBodyTimeAndStep) {
   dynamics::World w = floes(3, {1.0, 0.0});
@@ -161,7 +160,10 @@ TEST(RunGuard, TheStepsMotionSummaryAgreesWithTheBodies) {
     dynamics::World w = floes(60, {0.5, 0.0});
     for (int i = 0; i < 60; i += 7) w.set_velocity(i, {-4.5, 0.25}, 0.05 * i);
     const auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(4, 4));
-    w.add_body({.id = 999, .shape = sq, .position = {0.0, 50.0}, .velocity = {30.0, 0.0},
+    w.add_body({.id = 999,
+                .shape = sq,
+                .position = {0.0, 50.0},
+                .velocity = {30.0, 0.0},
                 .motion = dynamics::Motion::kinematic});
     w.set_threads(threads);
     std::size_t contacts = 0;

@@ -31,7 +31,8 @@ TEST(SceneOutput, VelocityGridDefaultsAndKeys) {
 TEST(SceneOutput, VelocityGridErrorsNameKeyLineAndRange) {
   const std::string one(kOneFloe);
   std::string m = parse_error(one + "output:\n  velocity_grid: {cell: 0}\n");
-  EXPECT_TRUE(starts_with(m, "t.yaml:4:25: key 'output.velocity_grid.cell': 0 is outside the allowed range (0, 1e9] [m]"))
+  EXPECT_TRUE(
+      starts_with(m, "t.yaml:4:25: key 'output.velocity_grid.cell': 0 is outside the allowed range (0, 1e9] [m]"))
       << m;
   m = parse_error(one + "output:\n  velocity_grid: {samples_per_frame: 0}\n");
   EXPECT_TRUE(contains(m, "key 'output.velocity_grid.samples_per_frame'") && contains(m, "1") && contains(m, "1000"))
@@ -47,8 +48,9 @@ TEST(SceneOutput, VelocityGridErrorsNameKeyLineAndRange) {
   EXPECT_TRUE(contains(m, "key 'output.velocity_grid.cell': the velocity grid would have 1e8 cells (at most 4e6)"))
       << m;
   m = parse_error(one + "output:\n  velocity_grid: {spacing: 5}\n");
-  EXPECT_TRUE(contains(m, "unknown key 'output.velocity_grid.spacing'; allowed in 'output.velocity_grid': enabled, "
-                          "cell, region, samples_per_frame"))
+  EXPECT_TRUE(contains(m,
+                       "unknown key 'output.velocity_grid.spacing'; allowed in 'output.velocity_grid': enabled, "
+                       "cell, region, samples_per_frame"))
       << m;
   m = parse_error(one + "output:\n  velocity_grid: {enabled: sometimes}\n");
   EXPECT_TRUE(contains(m, "key 'output.velocity_grid.enabled': expected true or false")) << m;

@@ -20,7 +20,7 @@ namespace {
 
 TEST(SceneReader, DefaultsFillEverythingNotGiven) {
   const Scene s = parse_scene(kOneFloe, "dir/my_scene.yaml", {});
-  const Scene d;  // the defaults of scene.h
+  const Scene d;                  // the defaults of scene.h
   EXPECT_EQ(s.name, "my_scene");  // the file's stem
   EXPECT_EQ(s.source_path, "dir/my_scene.yaml");
   EXPECT_EQ(s.source_text, kOneFloe);
@@ -202,10 +202,10 @@ TEST(SceneReader, APolygonInWorldCoordinatesStaysWhereItIs) {
   // Read back from the resolved scene (body coordinates, the centroid as position): the same body.
   expect_same_settings(s, parse_scene(resolved_yaml(s), "r.yaml", {}));
   for (const char* extra : {"    position: [1, 2]\n", "    yaw: 0.5\n", "    yaw_deg: 5\n"})
-    EXPECT_NE(parse_error("floes:\n  - polygon: [[0, 0], [4, 0], [0, 3]]\n    coordinates: world\n" +
-                          std::string(extra))
-                  .find("coordinates: world takes the body's place from its polygon: remove"),
-              std::string::npos)
+    EXPECT_NE(
+        parse_error("floes:\n  - polygon: [[0, 0], [4, 0], [0, 3]]\n    coordinates: world\n" + std::string(extra))
+            .find("coordinates: world takes the body's place from its polygon: remove"),
+        std::string::npos)
         << extra;
   EXPECT_NE(parse_error("floes:\n  - regular: {sides: 5, radius: 2}\n    coordinates: world\n")
                 .find("'regular' and 'rectangle' are centred shapes"),
@@ -226,9 +226,9 @@ TEST(SceneReader, AutoAndNumbers) {
   EXPECT_EQ(s.world.broad_phase_cell, 30.0);
   EXPECT_EQ(s.world.broad_phase_skin, 0.5);
   EXPECT_EQ(s.world.contact.damping, contact::DampingModel::paper);
-  const Scene a = parse_scene(std::string(kOneFloe) +
-                                  "run: {dt: auto}\ncontact: {broad_phase_cell: auto, broad_phase_skin: auto}\n",
-                              "t.yaml", {});
+  const Scene a = parse_scene(
+      std::string(kOneFloe) + "run: {dt: auto}\ncontact: {broad_phase_cell: auto, broad_phase_skin: auto}\n", "t.yaml",
+      {});
   EXPECT_FALSE(a.time.dt.has_value());
   EXPECT_EQ(a.world.broad_phase_cell, 0.0);
   EXPECT_EQ(a.world.broad_phase_skin, 0.0);
@@ -241,14 +241,16 @@ TEST(SceneErrors, UnknownKeyNamesLineAndAllowedKeys) {
                                     "contact:\n"
                                     "  restitution: 0.5\n"
                                     "  restitutoin: 0.4\n");
-  EXPECT_TRUE(starts_with(m, "t.yaml:5:3: unknown key 'contact.restitutoin'; allowed in 'contact': restitution, "
-                             "friction, damping_model, narrow_phase, force_model, broad_phase_cell, broad_phase_skin"))
+  EXPECT_TRUE(starts_with(m,
+                          "t.yaml:5:3: unknown key 'contact.restitutoin'; allowed in 'contact': restitution, "
+                          "friction, damping_model, narrow_phase, force_model, broad_phase_cell, broad_phase_skin"))
       << m;
   const std::string top = parse_error(std::string(kOneFloe) + "flooes: []\n");
   EXPECT_TRUE(starts_with(top, "t.yaml:3:1: unknown key 'flooes'; allowed at the top level: name, run, ")) << top;
   const std::string nested = parse_error("floes:\n  - regular: {sides: 6, radius: 5, angle: 3}\n");
-  EXPECT_TRUE(starts_with(nested, "t.yaml:2:36: unknown key 'floes.0.regular.angle'; allowed in 'floes.0.regular': "
-                                  "sides, radius"))
+  EXPECT_TRUE(starts_with(nested,
+                          "t.yaml:2:36: unknown key 'floes.0.regular.angle'; allowed in 'floes.0.regular': "
+                          "sides, radius"))
       << nested;
 }
 
@@ -257,11 +259,14 @@ TEST(SceneErrors, UnknownKeyNamesLineAndAllowedKeys) {
 // that did not read back. Both are checked by the reader now, at the key's line.
 TEST(SceneErrors, UnusableRectangleOrRegularPolygonIsRefusedByTheReader) {
   std::string m = parse_error("floes:\n  - rectangle: {width: 1e-6, height: 1e9}\n");
-  EXPECT_TRUE(contains(m, "t.yaml:2:16: key 'floes.0.rectangle': the rectangle's outline is unusable: vertices 0 and 1"))
+  EXPECT_TRUE(
+      contains(m, "t.yaml:2:16: key 'floes.0.rectangle': the rectangle's outline is unusable: vertices 0 and 1"))
       << m;
   m = parse_error("floes:\n  - regular: {sides: 5, radius: 1e-70}\n");
-  EXPECT_TRUE(contains(m, "t.yaml:2:14: key 'floes.0.regular': the regular polygon's outline is unusable: the "
-                          "polygon's size")) << m;
+  EXPECT_TRUE(contains(m,
+                       "t.yaml:2:14: key 'floes.0.regular': the regular polygon's outline is unusable: the "
+                       "polygon's size"))
+      << m;
 }
 
 // yaml-cpp 0.7 takes a quoted string left open at the end of the file as the rest of the file; a control byte
@@ -323,8 +328,7 @@ TEST(SceneErrors, OutOfRangeSaysTheRangeAndUnit) {
   m = parse_error(std::string(kOneFloe) + "floe_field: {concentration: 0.8}\n");
   EXPECT_TRUE(contains(m, "key 'floe_field.concentration': 0.8 is outside the allowed range (0, 0.7] [-]")) << m;
   m = parse_error("floe_field:\n  size: {min: 10, max: 5}\n");
-  EXPECT_TRUE(starts_with(m, "t.yaml:2:24: key 'floe_field.size.max': size.max = 5 m must be >= size.min = 10 m"))
-      << m;
+  EXPECT_TRUE(starts_with(m, "t.yaml:2:24: key 'floe_field.size.max': size.max = 5 m must be >= size.min = 10 m")) << m;
   m = parse_error("floe_field:\n  region: [0, 0, -10, 100]\n");
   EXPECT_TRUE(contains(m, "key 'floe_field.region.2': xmax = -10 must be > xmin = 0 [m]")) << m;
 }
@@ -341,8 +345,9 @@ TEST(SceneErrors, NonFiniteNumbersAreRejected) {
 
 TEST(SceneErrors, MissingRequiredAndExclusiveKeys) {
   std::string m = parse_error("floes:\n  - position: [0, 0]\n");
-  EXPECT_TRUE(starts_with(m, "t.yaml:2:5: key 'floes.0': missing the shape: give one of 'polygon', 'regular' or "
-                             "'rectangle'"))
+  EXPECT_TRUE(starts_with(m,
+                          "t.yaml:2:5: key 'floes.0': missing the shape: give one of 'polygon', 'regular' or "
+                          "'rectangle'"))
       << m;
   m = parse_error("floes:\n  - regular: {sides: 6}\n");
   EXPECT_TRUE(contains(m, "key 'floes.0.regular': missing required key 'radius'")) << m;
@@ -411,17 +416,17 @@ TEST(SceneOverrides, AppliedBeforeValidation) {
 }
 
 TEST(SceneOverrides, ListItemsByIndexAndNewBlocks) {
-  const Scene s = read_scene(kSceneDir + "two_floes.yaml",
-                             {"floes.0.position=[1,2]", "floes.1.velocity=[-2, 0]", "contact.restitution=1",
-                              "floes.1.motion=fixed"});
+  const Scene s = read_scene(kSceneDir + "two_floes.yaml", {"floes.0.position=[1,2]", "floes.1.velocity=[-2, 0]",
+                                                            "contact.restitution=1", "floes.1.motion=fixed"});
   EXPECT_EQ(s.bodies[0].position, Vec2(1, 2));
   EXPECT_EQ(s.bodies[1].velocity, Vec2(-2, 0));
   EXPECT_EQ(s.bodies[1].motion, dynamics::Motion::fixed);
   EXPECT_EQ(s.world.contact.restitution, 1.0);
   // A block that the file lacks is created; a whole list can be replaced.
   const Scene t = parse_scene(kOneFloe, "t.yaml",
-                              {"channel.opening=100", "floes=[{rectangle: {width: 2, height: 3}}, "
-                                                      "{regular: {sides: 5, radius: 1}}]"});
+                              {"channel.opening=100",
+                               "floes=[{rectangle: {width: 2, height: 3}}, "
+                               "{regular: {sides: 5, radius: 1}}]"});
   ASSERT_TRUE(t.channel.has_value());
   EXPECT_EQ(t.channel->opening, 100.0);
   EXPECT_EQ(t.bodies.size(), 2u);
@@ -482,14 +487,14 @@ TEST(ResolvedYaml, RoundTripsEveryFieldKind) {
   };
   for (const char* f : fields) {
     SCOPED_TRACE(f);
-    const Scene s = parse_scene(std::string(kOneFloe) + "forcing:\n  ocean: {field: " + f + "}\n  air: {field: " + f +
-                                    "}\n",
-                                "f.yaml", {});
+    const Scene s = parse_scene(
+        std::string(kOneFloe) + "forcing:\n  ocean: {field: " + f + "}\n  air: {field: " + f + "}\n", "f.yaml", {});
     EXPECT_EQ(s.ocean_field.kind, s.wind_field.kind);
     ASSERT_TRUE(s.world.drift.ocean && s.world.drift.wind);
     expect_round_trip(s);
   }
-  const Scene lin = parse_scene(std::string(kOneFloe) + "forcing:\n  ocean: {field: " + fields[1] + "}\n", "f.yaml", {});
+  const Scene lin =
+      parse_scene(std::string(kOneFloe) + "forcing:\n  ocean: {field: " + fields[1] + "}\n", "f.yaml", {});
   EXPECT_EQ(lin.ocean_field.kind, forcing::FieldKind::linear);
   EXPECT_EQ(lin.ocean_field.gradient(0, 1), -2e-3);
   EXPECT_EQ(lin.ocean_field.gradient(1, 0), 3e-4);
@@ -505,28 +510,36 @@ TEST(SceneErrors, ForcingBlock) {
   m = parse_error(one + "forcing:\n  ocean:\n    field: {velocity: [1, 0]}\n");
   EXPECT_TRUE(starts_with(m, "t.yaml:5:12: key 'forcing.ocean.field': missing required key 'type'")) << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: swirl}\n");
-  EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.type': expected one of uniform, linear, solid_body, rankine, "
-                          "tidal, time_series, file, got 'swirl'")) << m;
+  EXPECT_TRUE(contains(m,
+                       "key 'forcing.ocean.field.type': expected one of uniform, linear, solid_body, rankine, "
+                       "tidal, time_series, file, got 'swirl'"))
+      << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: uniform, angular_velocity: 1}\n");
-  EXPECT_TRUE(contains(m, "unknown key 'forcing.ocean.field.angular_velocity'; allowed in 'forcing.ocean.field': "
-                          "type, velocity")) << m;
+  EXPECT_TRUE(contains(m,
+                       "unknown key 'forcing.ocean.field.angular_velocity'; allowed in 'forcing.ocean.field': "
+                       "type, velocity"))
+      << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: rankine, core_radius: 100}\n");
   EXPECT_TRUE(contains(m, "missing required key 'max_speed'")) << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: rankine, core_radius: 0, max_speed: 1}\n");
   EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.core_radius': 0 is outside the allowed range (0, 1e9] [m]")) << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: tidal, amplitude: [1, 0]}\n");
   EXPECT_TRUE(contains(m, "missing required key 'period' [s]")) << m;
-  m = parse_error(one + "forcing:\n  ocean:\n    field: {type: time_series, times: [0, 10, 10], "
-                        "velocities: [[0, 0], [1, 0], [2, 0]]}\n");
+  m = parse_error(one +
+                  "forcing:\n  ocean:\n    field: {type: time_series, times: [0, 10, 10], "
+                  "velocities: [[0, 0], [1, 0], [2, 0]]}\n");
   EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.times.2': 10 s must be after the previous time 10 s")) << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: time_series, times: [0, 10], velocities: [[0, 0]]}\n");
   EXPECT_TRUE(contains(m, "key 'forcing.ocean.field.velocities': expected one velocity per time (2), got 1")) << m;
   m = parse_error(one + "forcing:\n  ocean:\n    field: {type: linear, gradient: [[1, 2]]}\n");
   EXPECT_TRUE(contains(m, "expected a list of 2 rows [[du/dx, du/dy], [dv/dx, dv/dy]] [1/s]")) << m;
-  m = parse_error(one + "run: {duration: 100}\nforcing:\n  air:\n    field: {type: time_series, times: [0, 50], "
-                        "velocities: [[0, 0], [1, 0]], outside: error}\n");
-  EXPECT_TRUE(contains(m, "key 'forcing.air.field.times': the series covers [0, 50] s but the run spans [0, 100] s "
-                          "with outside: error")) << m;
+  m = parse_error(one +
+                  "run: {duration: 100}\nforcing:\n  air:\n    field: {type: time_series, times: [0, 50], "
+                  "velocities: [[0, 0], [1, 0]], outside: error}\n");
+  EXPECT_TRUE(contains(m,
+                       "key 'forcing.air.field.times': the series covers [0, 50] s but the run spans [0, 100] s "
+                       "with outside: error"))
+      << m;
   m = parse_error(one + "forcing: {quadrature: degree3}\n");
   EXPECT_TRUE(contains(m, "expected one of centroid, degree1, degree2, degree4, degree5, got 'degree3'")) << m;
   m = parse_error(one + "forcing: {update_every: 0}\n");
@@ -540,8 +553,10 @@ TEST(SceneErrors, ForcingBlock) {
   EXPECT_TRUE(contains(m, "key 'forcing.ocean.form_drag.coefficient': -0.1 is outside the allowed range [0, 10] [-]"))
       << m;
   m = parse_error(one + "ice: {density: 1100}\n");
-  EXPECT_TRUE(contains(m, "key 'ice.density': ice density 1100 kg/m^3 must be below the water density "
-                          "forcing.ocean.density = 1025 kg/m^3, or the floes would sink")) << m;
+  EXPECT_TRUE(contains(m,
+                       "key 'ice.density': ice density 1100 kg/m^3 must be below the water density "
+                       "forcing.ocean.density = 1025 kg/m^3, or the floes would sink"))
+      << m;
   // Only the water density given: the message points at it (and no yaml-cpp error about the missing 'ice' block).
   m = parse_error(one + "forcing: {ocean: {density: 900}}\n");
   EXPECT_TRUE(starts_with(m, "t.yaml:3:28: key 'forcing.ocean.density': ice density 920 kg/m^3 must be below")) << m;
@@ -553,7 +568,8 @@ TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
       "run: {duration: 12.5, dt: 3.3e-5, steps_per_contact: 17, reference_speed: 0.7}\n"
       "output: {interval: 0.1, vtk: false, contacts: false, hdf5: false}\n"
       "ice: {density: 900.5, youngs_modulus: 3.3e8, poisson_ratio: 0.123456789012345}\n"
-      "contact: {restitution: 0.1, friction: 0.7, damping_model: paper, force_model: foundation, broad_phase_cell: 12}\n"
+      "contact: {restitution: 0.1, friction: 0.7, damping_model: paper, force_model: foundation, broad_phase_cell: "
+      "12}\n"
       "forcing:\n"
       "  treatment: explicit\n"
       "  quadrature: degree4\n"
@@ -585,7 +601,6 @@ TEST(ResolvedYaml, RoundTripsEveryNonDefaultSetting) {
   EXPECT_TRUE(contains(text, "external_force: [1e6, 2]  # [N]")) << text;
   EXPECT_TRUE(contains(text, "youngs_modulus: 3.3e8  # [Pa]")) << text;
 }
-
 
 }  // namespace
 }  // namespace polyfloe::scene

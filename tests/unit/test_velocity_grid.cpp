@@ -32,9 +32,7 @@ dynamics::World empty_world() {
   return dynamics::World(ws);
 }
 
-Vec2 centre(const run::GridGeometry& g, int i, int j) {
-  return {g.x0 + (i + 0.5) * g.cell, g.y0 + (j + 0.5) * g.cell};
-}
+Vec2 centre(const run::GridGeometry& g, int i, int j) { return {g.x0 + (i + 0.5) * g.cell, g.y0 + (j + 0.5) * g.cell}; }
 
 TEST(VelocityGrid, RigidBodyVelocityOnCoveredCellsExactly) {
   dynamics::World w = empty_world();
@@ -80,10 +78,15 @@ TEST(VelocityGrid, CoverageMatchesPointInPolygonForManyFloes) {
   std::vector<std::vector<Vec2>> placed;
   for (int n = 0; n < 60; ++n) {  // scattered floes, 3-16 corners, allowed to overlap (first one wins)
     const auto v = tsupport::random_convex(rng, 3 + static_cast<int>(13 * U(rng)), 3 + 20 * U(rng), 3 + 20 * U(rng));
-    w.add_body({.id = static_cast<dynamics::BodyId>(n + 1), .shape = tsupport::shape_of(v),
-                .position = {300 * U(rng), 200 * U(rng)}, .yaw = 6.3 * U(rng), .velocity = {U(rng), U(rng)}});
+    w.add_body({.id = static_cast<dynamics::BodyId>(n + 1),
+                .shape = tsupport::shape_of(v),
+                .position = {300 * U(rng), 200 * U(rng)},
+                .yaw = 6.3 * U(rng),
+                .velocity = {U(rng), U(rng)}});
   }
-  w.add_body({.id = 99, .shape = tsupport::shape_of({{-5, -5}, {5, -5}, {5, 5}, {-5, 5}}), .position = {150, 100},
+  w.add_body({.id = 99,
+              .shape = tsupport::shape_of({{-5, -5}, {5, -5}, {5, 5}, {-5, 5}}),
+              .position = {150, 100},
               .motion = dynamics::Motion::fixed});  // walls carry no ice velocity
   w.compute_forces(0.0);
   const run::GridGeometry g = run::VelocityGrid::covering(w, 3.0);
@@ -102,8 +105,10 @@ TEST(VelocityGrid, CoverageMatchesPointInPolygonForManyFloes) {
       int first = -1;
       bool ambiguous = false;
       for (int b = 0; b < static_cast<int>(w.size()) - 1 && first < 0; ++b) {
-        if (tsupport::inside_convex(rings[static_cast<std::size_t>(b)], p, -1e-9)) first = b;  // clearly inside
-        else if (tsupport::inside_convex(rings[static_cast<std::size_t>(b)], p, 1e-9)) ambiguous = true;
+        if (tsupport::inside_convex(rings[static_cast<std::size_t>(b)], p, -1e-9))
+          first = b;  // clearly inside
+        else if (tsupport::inside_convex(rings[static_cast<std::size_t>(b)], p, 1e-9))
+          ambiguous = true;
       }
       if (ambiguous) continue;
       const std::size_t k = static_cast<std::size_t>(j * g.nx + i);
@@ -135,7 +140,9 @@ TEST(VelocityGrid, CoverageMatchesPointInPolygonForManyFloes) {
 TEST(VelocityGrid, AveragesOverSamplesAndCountsIceFraction) {
   dynamics::World w = empty_world();
   // A 10 m square moving at 2 m/s along +x over a row of 5 m cells.
-  w.add_body({.id = 1, .shape = tsupport::shape_of({{-5, -5}, {5, -5}, {5, 5}, {-5, 5}}), .position = {10.0, 5.0},
+  w.add_body({.id = 1,
+              .shape = tsupport::shape_of({{-5, -5}, {5, -5}, {5, 5}, {-5, 5}}),
+              .position = {10.0, 5.0},
               .velocity = {2.0, 0.0}});
   w.compute_forces(0.0);
   run::VelocityGrid grid({.x0 = 0.0, .y0 = 0.0, .cell = 5.0, .nx = 6, .ny = 2});
@@ -150,11 +157,11 @@ TEST(VelocityGrid, AveragesOverSamplesAndCountsIceFraction) {
   EXPECT_FLOAT_EQ(f.ice_fraction[1], 0.5f);
   EXPECT_FLOAT_EQ(f.ice_fraction[2], 1.0f);
   EXPECT_FLOAT_EQ(f.ice_fraction[3], 0.5f);
-  EXPECT_FLOAT_EQ(f.velocity[2 * 1], 2.0f);        // seen once, at 2 m/s
-  EXPECT_FLOAT_EQ(f.velocity[2 * 2], 3.0f);        // mean of 2 and 4
-  EXPECT_FLOAT_EQ(f.velocity[2 * 2 + 1], 0.5f);    // mean of 0 and 1
+  EXPECT_FLOAT_EQ(f.velocity[2 * 1], 2.0f);      // seen once, at 2 m/s
+  EXPECT_FLOAT_EQ(f.velocity[2 * 2], 3.0f);      // mean of 2 and 4
+  EXPECT_FLOAT_EQ(f.velocity[2 * 2 + 1], 0.5f);  // mean of 0 and 1
   EXPECT_FLOAT_EQ(f.velocity[2 * 3], 4.0f);
-  EXPECT_FLOAT_EQ(f.ice_fraction[6 + 2], 1.0f);    // the upper row too
+  EXPECT_FLOAT_EQ(f.ice_fraction[6 + 2], 1.0f);  // the upper row too
   // take() starts a new average.
   EXPECT_EQ(grid.samples(), 0);
   const auto empty = grid.take();
@@ -172,7 +179,9 @@ TEST(VelocityGridRecorder, WritesHdf5AndImageSeries) {
   const fs::path dir = polyfloe::tsupport::scratch_dir("polyfloe_test_velocity_grid");
   fs::remove_all(dir);
   dynamics::World w = empty_world();
-  w.add_body({.id = 1, .shape = tsupport::shape_of({{-5, -5}, {5, -5}, {5, 5}, {-5, 5}}), .position = {10.0, 5.0},
+  w.add_body({.id = 1,
+              .shape = tsupport::shape_of({{-5, -5}, {5, -5}, {5, 5}, {-5, 5}}),
+              .position = {10.0, 5.0},
               .velocity = {1.0, 0.5}});
   w.compute_forces(0.0);
   const run::GridGeometry g{.x0 = 0.0, .y0 = 0.0, .cell = 2.0, .nx = 15, .ny = 6};

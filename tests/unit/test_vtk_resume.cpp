@@ -64,7 +64,8 @@ void expect_listed_frames_complete(const fs::path& dir, std::size_t count) {
   const auto entries = tsupport::read_pvd(dir / "floes.pvd");
   ASSERT_EQ(entries.size(), count);
   for (const auto& [t, file] : entries) {
-    ASSERT_TRUE(fs::is_regular_file(dir / file)) << "floes.pvd lists " << file << " (t = " << t << "), which is not a file";
+    ASSERT_TRUE(fs::is_regular_file(dir / file))
+        << "floes.pvd lists " << file << " (t = " << t << "), which is not a file";
     std::ifstream in(dir / file);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("</VTKFile>"), std::string::npos) << file;

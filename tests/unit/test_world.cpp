@@ -85,8 +85,13 @@ TEST(World, IdIndexMapping) {
 TEST(World, MassPropertiesAndDiagnostics) {
   dynamics::World w(no_drift());
   // 10 m x 4 m x 2 m prism, rho = 900: m = 72000 kg, I = m (10^2 + 4^2) / 12.
-  const int a = w.add_body({.id = 1, .shape = rect(10, 4), .position = {3.0, -2.0}, .velocity = {0.5, 0.25},
-                            .angular_velocity = 0.1, .thickness = 2.0, .density = 900.0});
+  const int a = w.add_body({.id = 1,
+                            .shape = rect(10, 4),
+                            .position = {3.0, -2.0},
+                            .velocity = {0.5, 0.25},
+                            .angular_velocity = 0.1,
+                            .thickness = 2.0,
+                            .density = 900.0});
   const int b = w.add_body({.id = 2, .shape = rect(6, 6), .position = {-20.0, 5.0}, .velocity = {-0.1, 0.0}});
   w.add_body({.id = 3, .shape = rect(100, 5), .position = {0.0, -40.0}, .motion = dynamics::Motion::fixed});
   const double m = 72000.0, inertia = m * 116.0 / 12.0;
@@ -125,8 +130,12 @@ TEST(World, WorldVerticesFollowTheBody) {
   std::mt19937_64 rng(11);
   for (int k = 0; k < 5; ++k) {
     const auto shape = tsupport::shape_of(tsupport::random_convex(rng, 5 + k, 6.0, 4.0));
-    w.add_body({.id = static_cast<dynamics::BodyId>(k + 1), .shape = shape, .position = {40.0 * k, 1.0e4},
-                .yaw = 0.7 * k - 1.0, .velocity = {0.3, -0.2}, .angular_velocity = 0.05 * (k - 2)});
+    w.add_body({.id = static_cast<dynamics::BodyId>(k + 1),
+                .shape = shape,
+                .position = {40.0 * k, 1.0e4},
+                .yaw = 0.7 * k - 1.0,
+                .velocity = {0.3, -0.2},
+                .angular_velocity = 0.05 * (k - 2)});
   }
   for (int k = 0; k < 5; ++k) expect_vertices_follow_body(w, k);
   for (int s = 0; s < 500; ++s) w.step(0.01);
@@ -163,10 +172,19 @@ TEST(World, FixedBodiesNeverMove) {
   ws.contact.friction = 0.5;
   dynamics::World w(ws);
   // A fixed wall given a velocity (ignored) and a floe thrown at it obliquely, spinning.
-  const int wall = w.add_body({.id = 1, .shape = rect(100, 10), .position = {0.0, -5.0}, .yaw = 0.0,
-                               .velocity = {3.0, 1.0}, .angular_velocity = 0.5, .motion = dynamics::Motion::fixed});
-  const int floe = w.add_body({.id = 2, .shape = rect(8, 4), .position = {-10.0, 6.0}, .yaw = 0.4,
-                               .velocity = {1.0, -2.0}, .angular_velocity = 0.2});
+  const int wall = w.add_body({.id = 1,
+                               .shape = rect(100, 10),
+                               .position = {0.0, -5.0},
+                               .yaw = 0.0,
+                               .velocity = {3.0, 1.0},
+                               .angular_velocity = 0.5,
+                               .motion = dynamics::Motion::fixed});
+  const int floe = w.add_body({.id = 2,
+                               .shape = rect(8, 4),
+                               .position = {-10.0, 6.0},
+                               .yaw = 0.4,
+                               .velocity = {1.0, -2.0},
+                               .angular_velocity = 0.2});
   EXPECT_EQ(w.velocities()[wall].norm(), 0.0);
   EXPECT_EQ(w.angular_velocities()[wall], 0.0);
   w.set_velocity(wall, {5.0, 5.0}, 1.0);  // ignored for fixed bodies
@@ -194,8 +212,12 @@ TEST(World, KinematicBodiesKeepTheirPrescribedMotion) {
   // A kinematic plate sweeping (and slowly turning) through a row of floes, pushing them ahead.
   const Vec2 x0{-12.0, 0.0}, v{1.5, 0.1};
   const double omega = 0.01;
-  const int plate = w.add_body({.id = 1, .shape = rect(4, 60), .position = x0, .velocity = v,
-                                .angular_velocity = omega, .motion = dynamics::Motion::kinematic});
+  const int plate = w.add_body({.id = 1,
+                                .shape = rect(4, 60),
+                                .position = x0,
+                                .velocity = v,
+                                .angular_velocity = omega,
+                                .motion = dynamics::Motion::kinematic});
   for (int k = 0; k < 6; ++k)
     w.add_body({.id = static_cast<dynamics::BodyId>(10 + k), .shape = rect(8, 8), .position = {0.0, -25.0 + 10.0 * k}});
   const double dt = w.shortest_contact_duration(2.0) / 40.0;
@@ -213,10 +235,9 @@ TEST(World, KinematicBodiesKeepTheirPrescribedMotion) {
   EXPECT_NEAR((w.positions()[plate] - (x0 + t * v)).norm(), 0.0, 1e-9);
   EXPECT_NEAR(w.yaws()[plate], omega * t, 1e-12);
   expect_vertices_follow_body(w, plate);
-  std::printf("kinematic plate: %d contact steps, max contact force on it %.3e N, velocity unchanged\n",
-              contact_steps, max_force);
+  std::printf("kinematic plate: %d contact steps, max contact force on it %.3e N, velocity unchanged\n", contact_steps,
+              max_force);
   EXPECT_GT(contact_steps, 100);
   EXPECT_GT(max_force, 1.0e3);
   for (int k = 1; k <= 6; ++k) EXPECT_GT(w.velocities()[k].x(), 0.5) << "floe " << k << " was pushed";
 }
-

@@ -27,9 +27,9 @@ std::string error_of(const std::string& text, const std::vector<std::string>& ov
 }
 
 TEST(YamlLimits, ARecursiveAliasIsRefusedNamingItsLine) {
-  for (const std::string& text : {"a: &x [*x]\n" + kFloe, "run: &a {duration: *a}\n" + kFloe,
-                                  std::string("run: {duration: 1}\nfloes: &a [*a]\n"),
-                                  "run: {duration: 1}\nforcing: &m {ocean: {x: [[*m]]}}\n" + kFloe}) {
+  for (const std::string& text :
+       {"a: &x [*x]\n" + kFloe, "run: &a {duration: *a}\n" + kFloe, std::string("run: {duration: 1}\nfloes: &a [*a]\n"),
+        "run: {duration: 1}\nforcing: &m {ocean: {x: [[*m]]}}\n" + kFloe}) {
     const std::string e = error_of(text);
     EXPECT_NE(e.find("a recursive YAML alias"), std::string::npos) << text << "\n" << e;
     EXPECT_EQ(e.rfind("t.yaml:", 0), 0u) << e;
@@ -56,9 +56,10 @@ TEST(YamlLimits, BillionLaughsIsRefusedWithinTheBudget) {
 }
 
 TEST(YamlLimits, AliasesWithinTheBudgetAreUsedAsCopies) {
-  const Scene s = parse_scene("run: {duration: 1}\nfloes:\n  - {rectangle: &r {width: 10, height: 4}, position: [0, 0]}\n"
-                              "  - {rectangle: *r, position: [20, 0]}\n",
-                              "t.yaml");
+  const Scene s = parse_scene(
+      "run: {duration: 1}\nfloes:\n  - {rectangle: &r {width: 10, height: 4}, position: [0, 0]}\n"
+      "  - {rectangle: *r, position: [20, 0]}\n",
+      "t.yaml");
   ASSERT_EQ(s.bodies.size(), 2u);
 }
 

@@ -35,15 +35,24 @@ dynamics::World chain(int n, double s, const bonds::BondMaterial& m, bool anchor
   ws.contact.poisson_ratio = kNu;
   dynamics::World w(ws);
   for (int i = 0; i < n; ++i) {
-    w.add_body({.id = static_cast<dynamics::BodyId>(i), .shape = square(s), .position = {i * s, 0.0},
-                .thickness = kH, .density = kRho,
+    w.add_body({.id = static_cast<dynamics::BodyId>(i),
+                .shape = square(s),
+                .position = {i * s, 0.0},
+                .thickness = kH,
+                .density = kRho,
                 .motion = (i == 0 && anchor_first) ? dynamics::Motion::fixed : dynamics::Motion::dynamic});
   }
   bonds::BondSet b(m);
   for (int i = 0; i + 1 < n; ++i) {
     const double x = (i + 0.5) * s;
-    b.add_face({.a = i, .b = i + 1, .id_a = static_cast<std::uint64_t>(i), .id_b = static_cast<std::uint64_t>(i + 1),
-                .p0 = {x, -s / 2}, .p1 = {x, s / 2}, .thickness = kH, .centre_a = {i * s, 0.0},
+    b.add_face({.a = i,
+                .b = i + 1,
+                .id_a = static_cast<std::uint64_t>(i),
+                .id_b = static_cast<std::uint64_t>(i + 1),
+                .p0 = {x, -s / 2},
+                .p1 = {x, s / 2},
+                .thickness = kH,
+                .centre_a = {i * s, 0.0},
                 .centre_b = {(i + 1) * s, 0.0}});
   }
   w.set_bonds(std::move(b));
@@ -102,8 +111,9 @@ TEST(Bonds, TensileFailureAtTheStrengthScalesLinearly) {
   }
   const double r2 = sxy * sxy / (sxx * syy);
   EXPECT_GT(r2, 0.9999);
-  std::printf("tensile failure force / (strength x area): %.4f %.4f %.4f %.4f; R^2 = %.6f\n", forces[0] / (0.1e6 * area),
-              forces[1] / (0.5e6 * area), forces[2] / (1.0e6 * area), forces[3] / (1.5e6 * area), r2);
+  std::printf("tensile failure force / (strength x area): %.4f %.4f %.4f %.4f; R^2 = %.6f\n",
+              forces[0] / (0.1e6 * area), forces[1] / (0.5e6 * area), forces[2] / (1.0e6 * area),
+              forces[3] / (1.5e6 * area), r2);
 }
 
 TEST(Bonds, CompressionAloneNeverBreaks) {
@@ -155,12 +165,22 @@ TEST(Bonds, MomentumAndAngularMomentumConserved) {
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
-      w.add_body({.id = static_cast<dynamics::BodyId>(3 * j + i), .shape = square(s), .position = {i * s, j * s},
-                  .velocity = {0.3 + 0.01 * U(rng), 0.01 * U(rng)}, .angular_velocity = 0.01 * U(rng)});
+      w.add_body({.id = static_cast<dynamics::BodyId>(3 * j + i),
+                  .shape = square(s),
+                  .position = {i * s, j * s},
+                  .velocity = {0.3 + 0.01 * U(rng), 0.01 * U(rng)},
+                  .angular_velocity = 0.01 * U(rng)});
   bonds::BondSet b(material(1e9));
   auto face = [&](int a, int c, Vec2 p0, Vec2 p1) {
-    b.add_face({.a = a, .b = c, .id_a = static_cast<std::uint64_t>(a), .id_b = static_cast<std::uint64_t>(c),
-                .p0 = p0, .p1 = p1, .thickness = 1.0, .centre_a = w.positions()[a], .centre_b = w.positions()[c]});
+    b.add_face({.a = a,
+                .b = c,
+                .id_a = static_cast<std::uint64_t>(a),
+                .id_b = static_cast<std::uint64_t>(c),
+                .p0 = p0,
+                .p1 = p1,
+                .thickness = 1.0,
+                .centre_a = w.positions()[a],
+                .centre_b = w.positions()[c]});
   };
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) {
@@ -283,8 +303,11 @@ Strip bonded_strip(int nx, int ny, double s, double zeta) {
   Strip st{dynamics::World(ws), nx, ny, s};
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i <= nx; ++i)
-      st.world.add_body({.id = static_cast<dynamics::BodyId>(st.index(i, j)), .shape = square(s),
-                         .position = {i * s, j * s}, .thickness = kH, .density = kRho,
+      st.world.add_body({.id = static_cast<dynamics::BodyId>(st.index(i, j)),
+                         .shape = square(s),
+                         .position = {i * s, j * s},
+                         .thickness = kH,
+                         .density = kRho,
                          .motion = i == 0 ? dynamics::Motion::fixed : dynamics::Motion::dynamic});
   bonds::BondMaterial m = material(1e12);
   m.shear_strength = 1e12;
@@ -292,13 +315,20 @@ Strip bonded_strip(int nx, int ny, double s, double zeta) {
   bonds::BondSet b(m);
   const auto& pos = st.world.positions();
   auto face = [&](int a, int c, Vec2 p0, Vec2 p1) {
-    b.add_face({.a = a, .b = c, .id_a = static_cast<std::uint64_t>(a), .id_b = static_cast<std::uint64_t>(c),
-                .p0 = p0, .p1 = p1, .thickness = kH, .centre_a = pos[static_cast<std::size_t>(a)],
+    b.add_face({.a = a,
+                .b = c,
+                .id_a = static_cast<std::uint64_t>(a),
+                .id_b = static_cast<std::uint64_t>(c),
+                .p0 = p0,
+                .p1 = p1,
+                .thickness = kH,
+                .centre_a = pos[static_cast<std::size_t>(a)],
                 .centre_b = pos[static_cast<std::size_t>(c)]});
   };
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i <= nx; ++i) {
-      if (i < nx) face(st.index(i, j), st.index(i + 1, j), {(i + 0.5) * s, (j - 0.5) * s}, {(i + 0.5) * s, (j + 0.5) * s});
+      if (i < nx)
+        face(st.index(i, j), st.index(i + 1, j), {(i + 0.5) * s, (j - 0.5) * s}, {(i + 0.5) * s, (j + 0.5) * s});
       if (j + 1 < ny && i > 0)
         face(st.index(i, j), st.index(i, j + 1), {(i - 0.5) * s, (j + 0.5) * s}, {(i + 0.5) * s, (j + 0.5) * s});
     }

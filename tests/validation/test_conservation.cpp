@@ -41,8 +41,7 @@ namespace {
 using tsupport::Field;
 using tsupport::make_field;
 
-dynamics::WorldSettings free_space(double mu, double e,
-                                   contact::ForceModel model = contact::ForceModel::centroid) {
+dynamics::WorldSettings free_space(double mu, double e, contact::ForceModel model = contact::ForceModel::centroid) {
   dynamics::WorldSettings ws;
   ws.contact.force_model = model;
   ws.contact.friction = mu;
@@ -107,10 +106,11 @@ TEST_P(ConservationByModel, MomentumWithFrictionAndDamping) {
     p_err = std::max(p_err, (w.linear_momentum() - p0).norm() / p_scale);
     l_err = std::max(l_err, std::abs(w.angular_momentum() - l0) / l_scale);
   }
-  std::printf("momentum: %zu floes, area fraction %.3f, dt %.3e s, %d steps (%.1f s), %llu contact-steps, "
-              "%zu distinct pairs\n",
-              w.size(), f.area_fraction, dt, steps, w.time(), static_cast<unsigned long long>(stats.contact_steps),
-              stats.pairs.size());
+  std::printf(
+      "momentum: %zu floes, area fraction %.3f, dt %.3e s, %d steps (%.1f s), %llu contact-steps, "
+      "%zu distinct pairs\n",
+      w.size(), f.area_fraction, dt, steps, w.time(), static_cast<unsigned long long>(stats.contact_steps),
+      stats.pairs.size());
   std::printf("momentum: max |dP|/sum m|v| = %.3e, max |dL|/sum(m|x x v| + I|w|) = %.3e\n", p_err, l_err);
   EXPECT_GT(f.area_fraction, 0.40);
   EXPECT_LT(f.area_fraction, 0.50);
@@ -150,9 +150,10 @@ TEST_P(ConservationByModel, EnergyFrictionlessElasticField) {
   }
   std::printf("energy (field): area fraction %.3f, dt %.3e s, %d steps, %llu contact-steps, %zu distinct pairs\n",
               f.area_fraction, dt, steps, static_cast<unsigned long long>(stats.contact_steps), stats.pairs.size());
-  std::printf("energy (field): max |KE + U - E0|/E0 = %.3e (max U/E0 = %.3e); at the %d contact-free steps: "
-              "max |KE - E0|/E0 = %.3e, last (KE - E0)/E0 = %.3e\n",
-              max_err, max_elastic, free_steps, max_free_err, last_free_err);
+  std::printf(
+      "energy (field): max |KE + U - E0|/E0 = %.3e (max U/E0 = %.3e); at the %d contact-free steps: "
+      "max |KE - E0|/E0 = %.3e, last (KE - E0)/E0 = %.3e\n",
+      max_err, max_elastic, free_steps, max_free_err, last_free_err);
   EXPECT_GT(stats.contact_steps, 5000u);
   EXPECT_GE(stats.pairs.size(), 100u);
   EXPECT_GT(free_steps, 0);
@@ -183,18 +184,19 @@ TEST_P(ConservationByModel, HeadOnElasticImpactOfSquares) {
   ASSERT_TRUE(touched);
   ASSERT_TRUE(w.contacts().empty());
   const double err = (w.kinetic_energy() - e0) / e0;
-  std::printf("head-on e = 1: %d contact steps, kinetic energy after/before - 1 = %.3e, max |E - E0|/E0 during = "
-              "%.3e\n",
-              contact_steps, err, max_err);
+  std::printf(
+      "head-on e = 1: %d contact steps, kinetic energy after/before - 1 = %.3e, max |E - E0|/E0 during = "
+      "%.3e\n",
+      contact_steps, err, max_err);
   EXPECT_LT(std::abs(err), 1e-3);
 }
 
 namespace {
 
 struct VertexImpact {
-  double ke_error = 0.0;        // (KE after - KE before) / KE before
-  double max_error_45 = 0.0;    // max |KE + 4/5 k_n d^2.5 - E0| / E0 during the contact
-  double max_error_25 = 0.0;    // max |KE + 2/5 k_n d^2.5 - E0| / E0 during the contact
+  double ke_error = 0.0;              // (KE after - KE before) / KE before
+  double max_error_45 = 0.0;          // max |KE + 4/5 k_n d^2.5 - E0| / E0 during the contact
+  double max_error_25 = 0.0;          // max |KE + 2/5 k_n d^2.5 - E0| / E0 during the contact
   double max_half_depth_error = 0.0;  // max |d - h/2| / (h/2), h = penetration of the corner below the face
   int contact_steps = 0;
 };
@@ -250,9 +252,10 @@ VertexImpact corner_on_face(double yaw, double offset, double steps_per_contact,
 TEST(Conservation, SymmetricCornerOnFaceImpact) {
   for (double offset : {0.0, 3.0}) {
     const VertexImpact r = corner_on_face(std::numbers::pi / 4, offset, 40.0);
-    std::printf("corner on face, yaw 45 deg, offset %.0f m: %d contact steps, KE after/before - 1 = %.3e, "
-                "max |KE + 2/5 k d^2.5 - E0|/E0 = %.3e (with 4/5: %.3e), max |d - h/2|/(h/2) = %.1e\n",
-                offset, r.contact_steps, r.ke_error, r.max_error_25, r.max_error_45, r.max_half_depth_error);
+    std::printf(
+        "corner on face, yaw 45 deg, offset %.0f m: %d contact steps, KE after/before - 1 = %.3e, "
+        "max |KE + 2/5 k d^2.5 - E0|/E0 = %.3e (with 4/5: %.3e), max |d - h/2|/(h/2) = %.1e\n",
+        offset, r.contact_steps, r.ke_error, r.max_error_25, r.max_error_45, r.max_half_depth_error);
     EXPECT_LT(r.max_half_depth_error, 1e-9);
     EXPECT_LT(std::abs(r.ke_error), 1e-4);
     EXPECT_LT(r.max_error_25, 1e-3);
@@ -265,9 +268,10 @@ TEST(Conservation, SymmetricCornerOnFaceImpact) {
 TEST(Conservation, LopsidedCornerOnFaceImpact) {
   for (double steps : {40.0, 400.0}) {
     const VertexImpact r = corner_on_face(std::numbers::pi / 6, 0.0, steps);
-    std::printf("corner on face, yaw 30 deg, %.0f steps per contact: KE after/before - 1 = %.3e, "
-                "max |KE + 2/5 k d^2.5 - E0|/E0 = %.3e\n",
-                steps, r.ke_error, r.max_error_25);
+    std::printf(
+        "corner on face, yaw 30 deg, %.0f steps per contact: KE after/before - 1 = %.3e, "
+        "max |KE + 2/5 k d^2.5 - E0|/E0 = %.3e\n",
+        steps, r.ke_error, r.max_error_25);
     EXPECT_LT(std::abs(r.ke_error), 1e-4);
     EXPECT_LT(r.max_error_25, 1e-3);
     const VertexImpact c = corner_on_face(std::numbers::pi / 6, 0.0, steps, contact::ForceModel::centroid);

@@ -71,17 +71,17 @@ struct GasOutcome {
 GasOutcome corner_rich_gas(contact::ForceModel model) {
   constexpr int kFloes = 50;
   constexpr double kSpacing = 16.0, kSpeed = 3.0;
-  const tsupport::FloeShapes shapes{.corners_min = 3, .corners_max = 8, .size_min = 6.0, .size_max = 15.0,
-                                    .aspect_min = 0.25, .aspect_max = 1.0};
+  const tsupport::FloeShapes shapes{
+      .corners_min = 3, .corners_max = 8, .size_min = 6.0, .size_max = 15.0, .aspect_min = 0.25, .aspect_max = 1.0};
   const tsupport::Field field = tsupport::make_field(29, kFloes, kSpacing, kSpeed, 0.1, shapes);
   dynamics::World w(frictionless_elastic(model));
   for (const auto& b : field.bodies) w.add_body(b);
   // The box: four fixed walls 10 m thick just outside the placement grid (8 x 7 sites).
   const double half_x = 4.0 * kSpacing + 2.0, half_y = 3.5 * kSpacing + 2.0;
-  auto horizontal = std::make_shared<const geometry::ConvexPolygon>(
-      geometry::ConvexPolygon::rectangle(2.0 * half_x + 20.0, 10.0));
-  auto vertical = std::make_shared<const geometry::ConvexPolygon>(
-      geometry::ConvexPolygon::rectangle(10.0, 2.0 * half_y + 20.0));
+  auto horizontal =
+      std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(2.0 * half_x + 20.0, 10.0));
+  auto vertical =
+      std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10.0, 2.0 * half_y + 20.0));
   w.add_body({.id = 1, .shape = horizontal, .position = {0.0, -half_y - 5.0}, .motion = dynamics::Motion::fixed});
   w.add_body({.id = 2, .shape = horizontal, .position = {0.0, half_y + 5.0}, .motion = dynamics::Motion::fixed});
   w.add_body({.id = 3, .shape = vertical, .position = {-half_x - 5.0, 0.0}, .motion = dynamics::Motion::fixed});
@@ -116,13 +116,14 @@ GasOutcome corner_rich_gas(contact::ForceModel model) {
     }
     std::swap(before, now);
   }
-  std::printf("corner-rich gas, %s: %d collisions in %llu steps (dt %.3e s, %.1f s), %llu contact-steps; at the "
-              "%llu contact-free steps max |KE - E0|/E0 = %.3e, last %+.3e; fastest floe %.2f m/s (3 at the start)"
-              "%s%s\n",
-              name_of(model).c_str(), o.collisions, static_cast<unsigned long long>(o.steps), dt,
-              static_cast<double>(o.steps) * dt, static_cast<unsigned long long>(o.contact_steps),
-              static_cast<unsigned long long>(o.free_steps), o.max_error, o.last_error, w.max_speed(),
-              o.stopped.empty() ? "" : "; the run guard stopped it: ", o.stopped.c_str());
+  std::printf(
+      "corner-rich gas, %s: %d collisions in %llu steps (dt %.3e s, %.1f s), %llu contact-steps; at the "
+      "%llu contact-free steps max |KE - E0|/E0 = %.3e, last %+.3e; fastest floe %.2f m/s (3 at the start)"
+      "%s%s\n",
+      name_of(model).c_str(), o.collisions, static_cast<unsigned long long>(o.steps), dt,
+      static_cast<double>(o.steps) * dt, static_cast<unsigned long long>(o.contact_steps),
+      static_cast<unsigned long long>(o.free_steps), o.max_error, o.last_error, w.max_speed(),
+      o.stopped.empty() ? "" : "; the run guard stopped it: ", o.stopped.c_str());
   return o;
 }
 

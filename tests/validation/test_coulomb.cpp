@@ -37,14 +37,14 @@ constexpr double kRamp = 2.0;    // [s]
 
 struct Outcome {
   double mass = 0.0, f_normal = 0.0;
-  double hold_displacement = 0.0;  // stick: max |x(t) - x(t_hold)| over the hold [m]
-  double hold_mean_velocity = 0.0; // stick: (x(end) - x(t_hold)) / hold duration [m/s]
-  double stretch = 0.0;            // displacement from the start to the beginning of the hold [m]
-  bool slid_in_hold = false;       // any sliding contact during the hold
-  bool all_sliding_at_end = true;  // every contact sliding during the fit window
-  double acceleration = 0.0;       // slope of v_t over the fit window [m/s^2]
-  double tangential_force = 0.0;   // contact tangential force on the floe at the end, along +x [N]
-  double normal_force = 0.0;       // contact normal force at the end [N]
+  double hold_displacement = 0.0;   // stick: max |x(t) - x(t_hold)| over the hold [m]
+  double hold_mean_velocity = 0.0;  // stick: (x(end) - x(t_hold)) / hold duration [m/s]
+  double stretch = 0.0;             // displacement from the start to the beginning of the hold [m]
+  bool slid_in_hold = false;        // any sliding contact during the hold
+  bool all_sliding_at_end = true;   // every contact sliding during the fit window
+  double acceleration = 0.0;        // slope of v_t over the fit window [m/s^2]
+  double tangential_force = 0.0;    // contact tangential force on the floe at the end, along +x [N]
+  double normal_force = 0.0;        // contact normal force at the end [N]
 };
 
 // Runs the floe under F_N and F_t = ratio mu F_N for `duration` s; the hold (stick) or fit (slip) window is the
@@ -112,7 +112,10 @@ Outcome push_along_wall(contact::ForceModel model, double ratio, double duration
       }
       if (w.contacts().empty()) out.all_sliding_at_end = false;
       const double tt = w.time(), v = w.velocities()[f].x();
-      st += tt; sv += v; stt += tt * tt; stv += tt * v;
+      st += tt;
+      sv += v;
+      stt += tt * tt;
+      stv += tt * v;
       ++nfit;
     }
   }
@@ -128,10 +131,11 @@ Outcome push_along_wall(contact::ForceModel model, double ratio, double duration
 
 void expect_stick(contact::ForceModel model, double ratio) {
   const Outcome o = push_along_wall(model, ratio, kRamp + 1.0 + 10.0, 10.0);
-  std::printf("%s: stick F_t = %.2f mu F_N (F_N = %.4e N, m = %.0f kg): stretch %.3e m, hold displacement %.3e m over "
-              "10 s, mean v_t %.3e m/s, contact F_t %.5f F_t_applied, sliding in hold: %s\n",
-              contact::force_model_name(model), ratio, o.f_normal, o.mass, o.stretch, o.hold_displacement, o.hold_mean_velocity,
-              -o.tangential_force / (ratio * kMu * o.f_normal), o.slid_in_hold ? "yes" : "no");
+  std::printf(
+      "%s: stick F_t = %.2f mu F_N (F_N = %.4e N, m = %.0f kg): stretch %.3e m, hold displacement %.3e m over "
+      "10 s, mean v_t %.3e m/s, contact F_t %.5f F_t_applied, sliding in hold: %s\n",
+      contact::force_model_name(model), ratio, o.f_normal, o.mass, o.stretch, o.hold_displacement, o.hold_mean_velocity,
+      -o.tangential_force / (ratio * kMu * o.f_normal), o.slid_in_hold ? "yes" : "no");
   EXPECT_FALSE(o.slid_in_hold) << "ratio " << ratio;
   EXPECT_LT(o.hold_displacement, 1e-3) << "ratio " << ratio;
   EXPECT_LT(std::abs(o.hold_mean_velocity), 1e-5) << "ratio " << ratio;
@@ -140,7 +144,8 @@ void expect_stick(contact::ForceModel model, double ratio) {
   const contact::ContactLawSettings law;  // the defaults used by push_along_wall
   const double nu = law.poisson_ratio, e_star = law.youngs_modulus / (2.0 * (1.0 - nu * nu));
   const double k_s = 4.0 / 3.0 * e_star * std::sqrt(std::sqrt(kLength * kWidth / std::numbers::pi)) / (2.0 + 2.0 * nu);
-  const double stretch = ratio * kMu * o.f_normal / (k_s * rest_of(model, o.f_normal, k_s * (2.0 + 2.0 * nu)).spring_root);
+  const double stretch =
+      ratio * kMu * o.f_normal / (k_s * rest_of(model, o.f_normal, k_s * (2.0 + 2.0 * nu)).spring_root);
   std::printf("      spring stretch F_t/k_t = %.3e m, measured %.3e m (%+.2f %%)\n", stretch, o.stretch,
               100.0 * (o.stretch - stretch) / stretch);
   // (The foundation model's k_t follows its stiffness estimate (n - 1)/n F^2/W, n read from the overlap's extent
@@ -155,10 +160,11 @@ void expect_stick(contact::ForceModel model, double ratio) {
 void expect_slip(contact::ForceModel model, double ratio) {
   const Outcome o = push_along_wall(model, ratio, kRamp + 4.0, 3.0);
   const double expected = (ratio - 1.0) * kMu * o.f_normal / o.mass;
-  std::printf("%s: slip  F_t = %.2f mu F_N: a_t measured %.6f m/s^2, Coulomb (F_t - mu F_N)/m = %.6f m/s^2 "
-              "(relative error %+.1e), all contacts sliding: %s\n",
-              contact::force_model_name(model), ratio, o.acceleration, expected, (o.acceleration - expected) / expected,
-              o.all_sliding_at_end ? "yes" : "no");
+  std::printf(
+      "%s: slip  F_t = %.2f mu F_N: a_t measured %.6f m/s^2, Coulomb (F_t - mu F_N)/m = %.6f m/s^2 "
+      "(relative error %+.1e), all contacts sliding: %s\n",
+      contact::force_model_name(model), ratio, o.acceleration, expected, (o.acceleration - expected) / expected,
+      o.all_sliding_at_end ? "yes" : "no");
   EXPECT_TRUE(o.all_sliding_at_end) << "ratio " << ratio;
   EXPECT_NEAR(o.acceleration, expected, 0.02 * expected) << "ratio " << ratio;
 }

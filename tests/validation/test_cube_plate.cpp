@@ -71,7 +71,8 @@ TEST(CubePlateFaceOn, PaperDampingThroughTheManifoldKeepsRestitution) {
 // libccd behind the adapter gives the same answer on the edge impacts (its point is off the edge's midline, so the
 // manifold carries the force; a failed query falls back to sat).
 TEST(CubePlateLibccd, GjkEpaWithManifoldMatchesEquations6And7) {
-  for (const auto method : {SpatialNarrowPhase::gjk_epa_tiebreak, SpatialNarrowPhase::gjk_epa, SpatialNarrowPhase::mpr}) {
+  for (const auto method :
+       {SpatialNarrowPhase::gjk_epa_tiebreak, SpatialNarrowPhase::gjk_epa, SpatialNarrowPhase::mpr}) {
     for (int deg : {10, 30}) {
       CubePlateSetup s;
       s.alpha = deg * kDeg;

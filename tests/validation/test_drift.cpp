@@ -94,15 +94,18 @@ TEST(Drift, FreeDriftSkinAndAirAlongOneAxis) {
   EXPECT_NEAR((forcing::free_drift_velocity(d, uc, ua) - closed).norm(), 0.0, 1e-15);
   dynamics::World w(ws);
   w.add_body({.id = 1, .shape = rect(10, 10), .position = {0.0, 0.0}});
-  w.add_body({.id = 2, .shape = rect(30, 12), .position = {0.0, 5000.0}, .velocity = {1.0, 0.5}, .angular_velocity = 0.05});
+  w.add_body(
+      {.id = 2, .shape = rect(30, 12), .position = {0.0, 5000.0}, .velocity = {1.0, 0.5}, .angular_velocity = 0.05});
   w.add_body({.id = 3, .shape = rect(10, 10), .position = {0.0, -5000.0}, .velocity = {-0.3, 0.2}, .thickness = 3.0});
   for (int s = 0; s < 20000; ++s) w.step(10.0);  // 2e5 s; relaxation time ~1e3 s (3e3 s for the thick floe)
   for (int i = 0; i < 3; ++i) {
     const Vec2 u = w.velocities()[i];
     const double balance = ((u - uc) - k * (ua - u)).norm() / (u - uc).norm();
     const double err = (u - closed).norm() / closed.norm();
-    std::printf("free drift (skin + air), floe %d: u = (%.8f, %.2e) m/s, closed form %.8f m/s, |u - closed| / |u| = "
-                "%.1e, balance residual %.1e\n", i + 1, u.x(), u.y(), closed.x(), err, balance);
+    std::printf(
+        "free drift (skin + air), floe %d: u = (%.8f, %.2e) m/s, closed form %.8f m/s, |u - closed| / |u| = "
+        "%.1e, balance residual %.1e\n",
+        i + 1, u.x(), u.y(), closed.x(), err, balance);
     EXPECT_LT(err, 5e-3);
     EXPECT_LT(balance, 5e-3);
     EXPECT_NEAR(w.angular_velocities()[i], 0.0, 1e-9);
@@ -110,9 +113,9 @@ TEST(Drift, FreeDriftSkinAndAirAlongOneAxis) {
 }
 
 TEST(Drift, FreeDriftWithCoriolis) {
-  for (const auto& [uc, ua, lat] : {std::tuple{Vec2(0.0, 0.0), Vec2(10.0, 0.0), 75.0},
-                                    std::tuple{Vec2(0.1, -0.05), Vec2(8.0, 6.0), 60.0},
-                                    std::tuple{Vec2(0.0, 0.0), Vec2(10.0, 0.0), -70.0}}) {
+  for (const auto& [uc, ua, lat] :
+       {std::tuple{Vec2(0.0, 0.0), Vec2(10.0, 0.0), 75.0}, std::tuple{Vec2(0.1, -0.05), Vec2(8.0, 6.0), 60.0},
+        std::tuple{Vec2(0.0, 0.0), Vec2(10.0, 0.0), -70.0}}) {
     dynamics::WorldSettings ws;
     ws.drift = skin_and_air(uc, ua);
     ws.drift.coriolis = true;
@@ -125,9 +128,10 @@ TEST(Drift, FreeDriftWithCoriolis) {
     auto angle = [&](const Vec2& v) { return std::atan2(geometry::cross(ua, v), ua.dot(v)) * 180 / std::numbers::pi; };
     const double speed_err = std::abs(u.norm() - ref.norm()) / ref.norm();
     const double angle_err = std::abs(angle(u) - angle(ref)) / std::abs(angle(ref));
-    std::printf("free drift with Coriolis at %.0f deg: speed %.6f m/s (root %.6f), angle to the wind %.4f deg "
-                "(root %.4f): errors %.1e, %.1e\n", lat, u.norm(), ref.norm(), angle(u), angle(ref), speed_err,
-                angle_err);
+    std::printf(
+        "free drift with Coriolis at %.0f deg: speed %.6f m/s (root %.6f), angle to the wind %.4f deg "
+        "(root %.4f): errors %.1e, %.1e\n",
+        lat, u.norm(), ref.norm(), angle(u), angle(ref), speed_err, angle_err);
     EXPECT_LT(speed_err, 5e-3);
     EXPECT_LT(angle_err, 5e-3);
     if (lat > 0) {
@@ -168,10 +172,11 @@ TEST(Drift, InertialOscillation) {
     r_min = std::min(r_min, (p - centre).norm());
     r_max = std::max(r_max, (p - centre).norm());
   }
-  std::printf("inertial oscillation at 75 deg, dt = %.0f s: period %.2f s (2 pi / f = %.2f s, error %.1e), radius "
-              "%.3f..%.3f m (u0 / f = %.3f m, error %.1e) over %zu periods; speed %.12f (u0 = %.1f)\n", dt,
-              measured_period, period, std::abs(measured_period - period) / period, r_min, r_max, radius,
-              std::max(r_max - radius, radius - r_min) / radius, crossings.size(), w.velocities()[0].norm(), u0);
+  std::printf(
+      "inertial oscillation at 75 deg, dt = %.0f s: period %.2f s (2 pi / f = %.2f s, error %.1e), radius "
+      "%.3f..%.3f m (u0 / f = %.3f m, error %.1e) over %zu periods; speed %.12f (u0 = %.1f)\n",
+      dt, measured_period, period, std::abs(measured_period - period) / period, r_min, r_max, radius,
+      std::max(r_max - radius, radius - r_min) / radius, crossings.size(), w.velocities()[0].norm(), u0);
   EXPECT_LT(std::abs(measured_period - period) / period, 1e-3);
   EXPECT_LT(std::max(r_max - radius, radius - r_min) / radius, 1e-3);
   EXPECT_NEAR(w.velocities()[0].norm(), u0, 1e-12);  // the Cayley rotation keeps |u| exactly
@@ -192,8 +197,10 @@ TEST(Drift, FormDragOnASquareAtRest) {
     const double width = l * (std::abs(std::cos(yaw)) + std::abs(std::sin(yaw)));  // across the flow
     const double hand = 0.5 * 0.20 * 1025.0 * d * width * u * u;
     const Vec2 f = w.forces()[0];
-    std::printf("form drag, square %.0f m at yaw %.0f deg in %.1f m/s: F = (%.10f, %.1e) N, hand %.10f N, "
-                "torque %.1e N m\n", l, yaw_deg, u, f.x(), f.y(), hand, w.torques()[0]);
+    std::printf(
+        "form drag, square %.0f m at yaw %.0f deg in %.1f m/s: F = (%.10f, %.1e) N, hand %.10f N, "
+        "torque %.1e N m\n",
+        l, yaw_deg, u, f.x(), f.y(), hand, w.torques()[0]);
     EXPECT_NEAR(f.x(), hand, 1e-10 * hand);
     EXPECT_NEAR(f.y(), 0.0, 1e-10 * hand);
     EXPECT_NEAR(w.torques()[0], 0.0, 1e-10 * hand * l);
@@ -286,9 +293,10 @@ TEST(Drift, ShearSpinUpAndQuadratureConvergence) {
     const auto w = world_with(q, {0.0, 0.0});
     const double t = w->torques()[0];
     const double err = std::abs(t - exact) / std::abs(exact);
-    std::printf("shear u = (G y, 0), G = %.2f 1/s, square 2a = %.0f m, %-8s: torque %.6f N m (hand %.6f), error "
-                "%.2e, force (%.1e, %.1e) N\n", g, 2 * a, std::string(to_string(q)).c_str(), t, exact, err,
-                w->forces()[0].x(), w->forces()[0].y());
+    std::printf(
+        "shear u = (G y, 0), G = %.2f 1/s, square 2a = %.0f m, %-8s: torque %.6f N m (hand %.6f), error "
+        "%.2e, force (%.1e, %.1e) N\n",
+        g, 2 * a, std::string(to_string(q)).c_str(), t, exact, err, w->forces()[0].x(), w->forces()[0].y());
     EXPECT_NEAR(w->forces()[0].norm(), 0.0, 1e-12);
     if (q == Quadrature::centroid) {
       EXPECT_NEAR(t, 0.0, 1e-12) << "the paper's centre-velocity form cannot see shear";
@@ -363,8 +371,13 @@ Load term_load(int term, double s) {
   wind.velocity = {6.0, 2.0};
   ws.drift.wind = forcing::make_field(wind);
   dynamics::World w(ws);
-  w.add_body({.id = 1, .shape = tsupport::shape_of(poly), .position = Vec2(130.0, 70.0) * s, .yaw = 0.3,
-              .velocity = {0.5, 0.2}, .angular_velocity = 0.004 / s, .thickness = 1.5 * s});
+  w.add_body({.id = 1,
+              .shape = tsupport::shape_of(poly),
+              .position = Vec2(130.0, 70.0) * s,
+              .yaw = 0.3,
+              .velocity = {0.5, 0.2},
+              .angular_velocity = 0.004 / s,
+              .thickness = 1.5 * s});
   w.compute_forces(0.0);
   return {w.forces()[0], w.torques()[0]};
 }
@@ -375,7 +388,8 @@ TEST(Drift, ScalingWithLength) {
     const Load a = term_load(term, 1.0), b = term_load(term, 2.0);
     const double rf = b.force.norm() / a.force.norm(), rt = b.torque / a.torque;
     std::printf("scaling, %-11s: |F| x %s, M x %s (dimensional analysis: 4, 8)\n", names[term],
-                term == 1 ? "- (none)" : std::to_string(rf).c_str(), term == 4 ? "- (none)" : std::to_string(rt).c_str());
+                term == 1 ? "- (none)" : std::to_string(rf).c_str(),
+                term == 4 ? "- (none)" : std::to_string(rt).c_str());
     if (term != 1) {
       EXPECT_NEAR(rf, 4.0, 4e-12) << names[term];
       EXPECT_NEAR((b.force - 4.0 * a.force).norm(), 0.0, 1e-12 * b.force.norm()) << names[term];
@@ -410,9 +424,11 @@ TEST(Drift, LargeStepsSemiImplicitConvergesExplicitBlowsUp) {
     if (treatment == forcing::DriftTreatment::semi_implicit) {
       const Vec2 ref = coriolis_free_drift(ws.drift, uc, ua, 1.0);
       const double err = (w.velocities()[0] - ref).norm() / ref.norm();
-      std::printf("large steps, semi-implicit: dt = %.0f s (50 relaxation times, f dt = %.2f): u = (%.8f, %.8f) m/s, "
-                  "balance root (%.8f, %.8f), error %.1e\n", dt, ws.drift.coriolis_parameter(0.0) * dt,
-                  w.velocities()[0].x(), w.velocities()[0].y(), ref.x(), ref.y(), err);
+      std::printf(
+          "large steps, semi-implicit: dt = %.0f s (50 relaxation times, f dt = %.2f): u = (%.8f, %.8f) m/s, "
+          "balance root (%.8f, %.8f), error %.1e\n",
+          dt, ws.drift.coriolis_parameter(0.0) * dt, w.velocities()[0].x(), w.velocities()[0].y(), ref.x(), ref.y(),
+          err);
       EXPECT_TRUE(finite);
       EXPECT_LT(err, 1e-9);
     } else {
@@ -436,7 +452,8 @@ TEST(Drift, FloeSpinsUpWithASolidBodyVortex) {
     ws.drift.ocean = forcing::make_field(s);
     dynamics::World w(ws);
     std::vector<Vec2> poly;
-    for (int k = 0; k < 12; ++k) poly.emplace_back(15 * std::cos(k * std::numbers::pi / 6), 15 * std::sin(k * std::numbers::pi / 6));
+    for (int k = 0; k < 12; ++k)
+      poly.emplace_back(15 * std::cos(k * std::numbers::pi / 6), 15 * std::sin(k * std::numbers::pi / 6));
     w.add_body({.id = 1, .shape = tsupport::shape_of(poly)});
     double prev = 0.0;
     bool monotone = true;

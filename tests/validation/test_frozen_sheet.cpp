@@ -96,13 +96,16 @@ Modulus sheet_modulus(double side, double cell, const char* elements) {
   const std::string text =
       "forcing: {ocean: {form_drag: {enabled: false}, moment_drag: {enabled: false}, skin_drag: {enabled: false}},"
       " air: {drag: {enabled: false}}}\n"
-      "ice_sheet: {region: [0, 0, " + s + ", " + s + "], cell_size: " + std::to_string(cell) +
-      ", relaxation: 3, elements: " + elements + ", seed: 4,"
+      "ice_sheet: {region: [0, 0, " +
+      s + ", " + s + "], cell_size: " + std::to_string(cell) + ", relaxation: 3, elements: " + elements +
+      ", seed: 4,"
       " bonds: {tensile_strength: 1e12, shear_strength: 1e12, damping_ratio: 0.5}}\n"
       "floes:\n"
-      "  - {rectangle: {width: 10, height: " + h + "}, position: [-5, " + c + "], velocity: [0.01, 0], motion: kinematic}\n"
-      "  - {rectangle: {width: 10, height: " + h + "}, position: [" + std::to_string(side + 5) + ", " + c +
-      "], velocity: [-0.01, 0], motion: kinematic}\n";
+      "  - {rectangle: {width: 10, height: " +
+      h + "}, position: [-5, " + c +
+      "], velocity: [0.01, 0], motion: kinematic}\n"
+      "  - {rectangle: {width: 10, height: " +
+      h + "}, position: [" + std::to_string(side + 5) + ", " + c + "], velocity: [-0.01, 0], motion: kinematic}\n";
   const scene::Scene sc = scene::parse_scene(text, "modulus.yaml", {});
   dynamics::World w = scene::build_world(sc);
   const double dt = scene::time_step(sc, w);
@@ -169,9 +172,14 @@ VoronoiStrip voronoi_strip() {
   std::vector<Vec2> centre;
   for (std::size_t e = 0; e < el.polygons.size(); ++e) {
     Vec2 c{0, 0};
-    auto shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(el.polygons[e], &c));
+    auto shape =
+        std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(el.polygons[e], &c));
     centre.push_back(c);
-    st.world.add_body({.id = e, .shape = shape, .position = c, .thickness = kH, .density = kRho,
+    st.world.add_body({.id = e,
+                       .shape = shape,
+                       .position = c,
+                       .thickness = kH,
+                       .density = kRho,
                        .motion = c.x() < 5.0 ? dynamics::Motion::fixed : dynamics::Motion::dynamic});
     if (c.x() > kStripLength - 5.0) st.loaded.push_back(static_cast<int>(e));
   }
@@ -182,10 +190,17 @@ VoronoiStrip voronoi_strip() {
   double sum = 0.0;
   int n = 0;
   for (const scene::SheetFace& f : el.faces) {
-    b.add_face({.a = f.a, .b = f.b, .id_a = static_cast<std::uint64_t>(f.a), .id_b = static_cast<std::uint64_t>(f.b),
-                .p0 = f.p0, .p1 = f.p1, .thickness = kH, .centre_a = centre[static_cast<std::size_t>(f.a)],
+    b.add_face({.a = f.a,
+                .b = f.b,
+                .id_a = static_cast<std::uint64_t>(f.a),
+                .id_b = static_cast<std::uint64_t>(f.b),
+                .p0 = f.p0,
+                .p1 = f.p1,
+                .thickness = kH,
+                .centre_a = centre[static_cast<std::size_t>(f.a)],
                 .centre_b = centre[static_cast<std::size_t>(f.b)]});
-    const bool fa = centre[static_cast<std::size_t>(f.a)].x() < 5.0, fb = centre[static_cast<std::size_t>(f.b)].x() < 5.0;
+    const bool fa = centre[static_cast<std::size_t>(f.a)].x() < 5.0,
+               fb = centre[static_cast<std::size_t>(f.b)].x() < 5.0;
     if (fa != fb) {  // a clamp face: the spring starts at the fixed element's centroid
       sum += centre[static_cast<std::size_t>(fa ? f.a : f.b)].x();
       ++n;
@@ -214,9 +229,10 @@ TEST(FrozenSheet, VoronoiCantileverMatchesEulerBernoulliWithItsOwnModulus) {
   // (the first bending period is ~2 s)
   const Vec2 d = mean_displacement_under_load(bend.world, bend.loaded, {0.0, P}, 12.0, 8.0);
   const double euler_bernoulli = P * L * L * L / (3.0 * e_eff * I);
-  std::printf("Voronoi strip (%zu elements, L = %.1f m): axial E_eff / E = %.3f; end deflection %.5f m, "
-              "Euler-Bernoulli %.5f m (ratio %.3f)\n",
-              bend.world.size(), L, e_eff / kE, d.y(), euler_bernoulli, d.y() / euler_bernoulli);
+  std::printf(
+      "Voronoi strip (%zu elements, L = %.1f m): axial E_eff / E = %.3f; end deflection %.5f m, "
+      "Euler-Bernoulli %.5f m (ratio %.3f)\n",
+      bend.world.size(), L, e_eff / kE, d.y(), euler_bernoulli, d.y() / euler_bernoulli);
   EXPECT_NEAR(d.y() / euler_bernoulli, 1.0, 0.10);
 }
 

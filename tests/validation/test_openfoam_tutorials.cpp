@@ -110,8 +110,8 @@ class Tutorials : public ::testing::Test {
         worst = std::max(worst, (grid - foam).norm());
         top = std::max(top, foam.norm());
       }
-    std::cout << "  " << name << ": largest difference from OpenFOAM's probes " << worst << " m/s (speeds up to "
-              << top << " m/s)\n";
+    std::cout << "  " << name << ": largest difference from OpenFOAM's probes " << worst << " m/s (speeds up to " << top
+              << " m/s)\n";
     EXPECT_TRUE(fs::is_regular_file(c / "field.pvd")) << name;
     EXPECT_TRUE(fs::is_regular_file(c / "ice" / "floes.pvd")) << name;
     EXPECT_TRUE(fs::is_regular_file(c / "ice" / "results.h5")) << name;
@@ -128,7 +128,8 @@ class Tutorials : public ::testing::Test {
 TEST_F(Tutorials, TransientWithIncludeEtc) {
   const std::string log = slurp(work_ / "porousBlockage" / "log.import");
   EXPECT_NE(log.find("times read: 1, 2 s of the case's 0, 1, 2 s (t = 0, the initial condition, left out"),
-            std::string::npos) << log;
+            std::string::npos)
+      << log;
   const std::string all = slurp(work_ / "porousBlockage" / "log.import_all");
   EXPECT_NE(all.find("read from a copy OpenFOAM wrote out plainly"), std::string::npos) << all;
   const io::FieldFile f = io::read_field_file(work_ / "porousBlockage" / "field_all.h5");

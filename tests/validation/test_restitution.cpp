@@ -22,8 +22,7 @@ namespace {
 double measured_restitution(double e, double v, contact::DampingModel model, double steps_per_contact,
                             double reference_speed = -1.0, double phase = 0.0,
                             dynamics::PlanarNarrowPhase narrow = dynamics::PlanarNarrowPhase::exact,
-                            contact::ForceModel force_model = contact::ForceModel::centroid,
-                            bool corner = false) {
+                            contact::ForceModel force_model = contact::ForceModel::centroid, bool corner = false) {
   dynamics::WorldSettings ws;
   ws.contact.force_model = force_model;
   ws.narrow_phase = narrow;
@@ -35,8 +34,11 @@ double measured_restitution(double e, double v, contact::DampingModel model, dou
   dynamics::World w(ws);
   auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
   // corner: a turned by 45 degrees, its corner meeting b's face head on.
-  dynamics::BodyDesc a{.id = 1, .shape = sq, .position = {corner ? -5.0 * std::sqrt(2.0) : -5.0, 0.0},
-                       .yaw = corner ? 0.25 * std::numbers::pi : 0.0, .velocity = {0.5 * v, 0.0}};
+  dynamics::BodyDesc a{.id = 1,
+                       .shape = sq,
+                       .position = {corner ? -5.0 * std::sqrt(2.0) : -5.0, 0.0},
+                       .yaw = corner ? 0.25 * std::numbers::pi : 0.0,
+                       .velocity = {0.5 * v, 0.0}};
   dynamics::BodyDesc b{.id = 2, .shape = sq, .position = {5.0, 0.0}, .velocity = {-0.5 * v, 0.0}};
   const double dt = [&] {
     dynamics::World probe(ws);
@@ -105,16 +107,17 @@ TEST_P(RestitutionGrid, WorstErrorOverTheFullGrid) {
     for (double v : {0.01, 0.1, 1.0, 4.0}) {
       for (int k = 0; k < 8; ++k) {
         for (const bool corner : {false, true}) {
-          const double got = measured_restitution(e, v, contact::DampingModel::speed_independent, 40.0, -1.0,
-                                                  k / 8.0, dynamics::PlanarNarrowPhase::exact, GetParam(), corner);
+          const double got = measured_restitution(e, v, contact::DampingModel::speed_independent, 40.0, -1.0, k / 8.0,
+                                                  dynamics::PlanarNarrowPhase::exact, GetParam(), corner);
           double& worst = corner ? corner_e : face_e;
           worst = std::max(worst, std::abs(got - e));
         }
       }
     }
-    std::printf("%s: e %.1f: worst |measured - e| over 0.01-4 m/s and 8 entry phases: face on face %.2e, corner on "
-                "face %.2e\n",
-                contact::force_model_name(GetParam()), e, face_e, corner_e);
+    std::printf(
+        "%s: e %.1f: worst |measured - e| over 0.01-4 m/s and 8 entry phases: face on face %.2e, corner on "
+        "face %.2e\n",
+        contact::force_model_name(GetParam()), e, face_e, corner_e);
     worst_face = std::max(worst_face, face_e);
     worst_corner = std::max(worst_corner, corner_e);
   }

@@ -66,7 +66,8 @@ std::vector<double> crossings(const std::vector<double>& t, const std::vector<do
   for (double v : x) mean += v / static_cast<double>(x.size());
   std::vector<double> c;
   for (std::size_t i = 1; i < x.size(); ++i) {
-    if (x[i - 1] < mean && x[i] >= mean) c.push_back(t[i - 1] + (mean - x[i - 1]) / (x[i] - x[i - 1]) * (t[i] - t[i - 1]));
+    if (x[i - 1] < mean && x[i] >= mean)
+      c.push_back(t[i - 1] + (mean - x[i - 1]) / (x[i] - x[i - 1]) * (t[i] - t[i - 1]));
   }
   return c;
 }

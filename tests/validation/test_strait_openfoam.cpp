@@ -1,4 +1,5 @@
-// The strait end to end (of_cases/strait/Allrun --quick on a copy of the case; of_cases/tidal the same way): OpenFOAM's steady flow ->
+// The strait end to end (of_cases/strait/Allrun --quick on a copy of the case; of_cases/tidal the same way):
+// OpenFOAM's steady flow ->
 // `polyfloe field import` -> the ice run -> VTK and a picture. Then the physics of the imported current and of the
 // ice it drives, and the gridding error against probing the OpenFOAM mesh directly (coupling/'s direct mode).
 // Needs OpenFOAM (Debian's openfoam, installed by scripts/setup.sh): without it the test fails and says so.
@@ -52,9 +53,8 @@ struct CaseRun {
     // A copy of the source tree may hold a previous run's outputs: start clean.
     const std::string clean = "bash " + (dir / "Allclean").string();
     ASSERT_EQ(std::system(clean.c_str()), 0);
-    const std::string cmd = "POLYFLOE_ROOT=" + kSource.string() + " POLYFLOE_BUILD_DIR=" + kBuild.string() +
-                            " bash " + (dir / "Allrun").string() + " --quick > " + (root / "allrun.log").string() +
-                            " 2>&1";
+    const std::string cmd = "POLYFLOE_ROOT=" + kSource.string() + " POLYFLOE_BUILD_DIR=" + kBuild.string() + " bash " +
+                            (dir / "Allrun").string() + " --quick > " + (root / "allrun.log").string() + " 2>&1";
     status = std::system(cmd.c_str());
   }
   void check() const {
