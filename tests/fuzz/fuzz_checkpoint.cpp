@@ -118,7 +118,7 @@ void edit(FuzzedDataProvider& in, run::Checkpoint& c) {
     case 15:
       w.contact_history.emplace_back(contact::PairKey{in.ConsumeIntegralInRange<std::uint64_t>(0, 5),
                                                       in.ConsumeIntegralInRange<std::uint64_t>(0, 5)},
-                                     num());
+                                     contact::PlanarHistory{num(), num()});
       break;
     case 16:
       if (w.bonds) {
