@@ -87,6 +87,47 @@ struct PairCoefficients {
   double k_per_m = 0.0;  // k_n / m_star [N/(m^1.5 kg)] (the contact-duration estimate's, per contact)
 };
 
+// The tangential spring of one contact, in the plane (V = double: the spring along the tangent t = k x n) and in
+// space (V a 3-vector in the tangent plane): the spring advanced by the slip over the step, its force -k_t s capped
+// by Coulomb at `limit` = mu F_n, and where it slides the spring set to what the capped force implies (s = -F_t /
+// k_t). One implementation for both worlds; magnitude() and capped() are the only things that differ.
+inline double magnitude(double x) { return std::abs(x); }
+template <class V>
+double magnitude(const V& v) {
+  return v.norm();
+}
+inline double zero_of(double) { return 0.0; }
+template <class V>
+V zero_of(const V&) {
+  return V::Zero();
+}
+// x scaled to length `limit` (for a scalar: its sign kept, exactly).
+inline double capped(double x, double limit) { return std::copysign(limit, x); }
+template <class V>
+V capped(const V& v, double limit) {
+  return v * (limit / v.norm());
+}
+template <class V>
+struct TangentialSpring {
+  V force;   // on B [N]
+  V spring;  // the updated spring [m]
+  bool sliding = false;
+};
+// `spring`: last step's spring, as seen in this step's tangent plane [m]; `slip_velocity` of B relative to A in it
+// [m/s]; k_t [N/m]; limit [N]; dt [s].
+template <class V>
+TangentialSpring<V> tangential_spring(const V& spring, const V& slip_velocity, double k_t, double limit, double dt) {
+  TangentialSpring<V> t;
+  t.spring = spring + slip_velocity * dt;
+  t.force = -k_t * t.spring;
+  if (magnitude(t.force) > limit) {
+    t.sliding = true;
+    t.force = capped(t.force, limit);
+    t.spring = k_t > 0.0 ? V(-t.force / k_t) : zero_of(t.force);
+  }
+  return t;
+}
+
 struct ContactForce {
   double normal = 0.0;      // F_n >= 0 [N], pushes B along +n
   double tangential = 0.0;  // F_s along the tangent t = k x n, acting on B [N]
@@ -176,16 +217,10 @@ class ContactLaw {
 
   // The tangential spring of stiffness k_t advanced by the slip, capped by Coulomb at mu f.normal.
   static void friction(double mu, double k_t, double slip_velocity, double spring, double dt, ContactForce& f) {
-    double s = spring + slip_velocity * dt;
-    const double limit = mu * f.normal;
-    double ft = -k_t * s;
-    if (std::abs(ft) > limit) {
-      f.sliding = true;
-      ft = std::copysign(limit, ft);
-      s = k_t > 0.0 ? -ft / k_t : 0.0;
-    }
-    f.tangential = ft;
-    f.spring = s;
+    const TangentialSpring<double> t = tangential_spring(spring, slip_velocity, k_t, mu * f.normal, dt);
+    f.tangential = t.force;
+    f.spring = t.spring;
+    f.sliding = t.sliding;
   }
 
   ContactLawSettings s_;

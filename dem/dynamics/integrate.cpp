@@ -18,10 +18,9 @@ bool World::kick_and_move(double dt) {
   const double half_dt = 0.5 * dt;
   const int n = static_cast<int>(size());
   bool changed = false;
-  // And how far each body's vertices may have moved since the neighbour lists were built (skin_outrun's test,
-  // done here while the body is at hand: the contact stage then needs no pass of its own).
-  const bool lists = skin_pos_.size() == size();
-  const double half_skin = 0.5 * skin_;
+  // And how far each body's vertices may have moved since the neighbour lists were built (their test, done here
+  // while the body is at hand: the contact stage then needs no pass of its own).
+  const bool lists = lists_.built_for(size());
   bool outrun = false;
   POLYFLOE_OMP_FOR_ANY(threads_, changed, outrun)
   for (int ii = 0; ii < n; ++ii) {
@@ -41,9 +40,9 @@ bool World::kick_and_move(double dt) {
       yaw_[i] += dt * omega_[i];
     }
     changed = set_slot_key(ii) || changed;
-    if (lists) outrun = !skin_within(i, half_skin) || outrun;
+    if (lists) outrun = !lists_.within(i, pos_[i], yaw_[i], reach_[i]) || outrun;
   }
-  kick_outrun_ = !lists || outrun;
+  lists_.set_kick_verdict(!lists || outrun);
   return changed;
 }
 
@@ -227,7 +226,7 @@ void World::sort_slots(bool keys_changed) {
     std::sort(slots_.begin(), slots_.end(), [](const SlotKey& a, const SlotKey& b) { return slot_less(a, b); });
     moved_.assign(1, {0, n - 1});
   }
-  slots_moved_ = slots_moved_ || !moved_.empty();
+  if (!moved_.empty()) lists_.note_slots_moved();
   // New layout of each moved interval: slot data and the bodies' places in their block of world_xy_ follow the
   // slot order; the fixed bodies there are redrawn (the others are every step).
   for (const auto& [first, last] : moved_) {

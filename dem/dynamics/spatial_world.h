@@ -148,6 +148,14 @@ class SpatialWorld {
   void drift(double dt);
   void update_world_vertices(int i);
   Mat3 world_inverse_inertia(int i) const;
+  // compute_forces' parts: gravity and buoyancy, the narrow phase of a pair, its manifold, its forces, its friction.
+  void body_loads();
+  contact::SatContact measure(int a, int b, const Mat3& rot_a, const Mat3& rot_b);
+  contact::ContactManifold manifold(int a, int b, const Mat3& rot_a, const Mat3& rot_b, const contact::SatContact& c,
+                                    SpatialContact& k) const;
+  bool apply_contact(const contact::ContactManifold& m, double dt, std::size_t& hint, SpatialContact& k);
+  Vec3 friction(const SpatialContact& k, const contact::PairCoefficients& coef, double normal_total, const Vec3& vrel,
+                double dt, std::size_t& hint);
 
   SpatialSettings settings_;
   contact::ContactLaw law_;

@@ -13,7 +13,7 @@
 namespace polyfloe::dynamics {
 
 World::World(const WorldSettings& settings)
-    : settings_(settings), law_(settings.contact), broad_(settings.broad_phase_cell) {
+    : settings_(settings), law_(settings.contact), lists_(settings.broad_phase_cell) {
   // (the scene reader says the same naming the scene's key, forcing.update_every)
   const forcing::DriftSettings& d = settings.drift;
   if (d.update_every < 1 || d.update_every > 1000)
@@ -96,12 +96,11 @@ int World::add_body(const BodyDesc& d) {
     ++dynamic_count_;
     order_cell_ = geometry::space_order_cell(radius_sum_ / dynamic_count_);
   }
-  skin_ = settings_.broad_phase_skin > 0.0 ? settings_.broad_phase_skin
-          : dynamic_count_ > 0             ? 0.2 * radius_sum_ / dynamic_count_
-                                           : 1.0;
+  lists_.set_skin(settings_.broad_phase_skin > 0.0 ? settings_.broad_phase_skin
+                  : dynamic_count_ > 0             ? 0.2 * radius_sum_ / dynamic_count_
+                                                   : 1.0);
   reach_.push_back(d.shape->circumradius());
-  skin_pos_.clear();  // rebuilt at the next evaluation
-  kick_outrun_.reset();
+  lists_.invalidate();  // rebuilt at the next evaluation
   slots_.push_back({~std::uint64_t{0}, i});
   body_slot_.push_back(i);
   slot_static_.push_back(slot_static_of(i, vert_begin_[i]));
@@ -112,7 +111,7 @@ int World::add_body(const BodyDesc& d) {
   return i;
 }
 
-World::SlotStatic World::slot_static_of(int i, int vert_begin) const {
+SlotStatic World::slot_static_of(int i, int vert_begin) const {
   return {is_dynamic_[i] ? mass_[i] : contact::kInfinite,
           radius_[i],
           equivalent_radius_[i],
@@ -396,7 +395,7 @@ void World::restore(const WorldState& s) {
   worst_a_ = worst_b_ = -1;
   update_shapes();
   forces_ready_ = s.forces_ready;
-  kick_outrun_.reset();  // the poses changed since any kick tested them
+  lists_.forget_kick_verdict();  // the poses changed since any kick tested them
   summary_ready_ = false;
 }
 

@@ -20,6 +20,8 @@
 #include "contact/narrow_phase_gjk2d.h"
 #include "contact/narrow_phase_planar.h"
 #include "dynamics/body.h"
+#include "dynamics/neighbour_lists.h"
+#include "dynamics/slots.h"
 #include "forcing/drift.h"
 
 namespace polyfloe::dynamics {
@@ -217,7 +219,7 @@ class World {
   const contact::ContactLaw& contact_law() const { return law_; }
   const StepProfile& profile() const { return profile_; }
   // How often the broad phase's neighbour lists were rebuilt (a diagnostic of the skin; see WorldSettings).
-  std::uint64_t neighbour_list_builds() const { return skin_builds_; }
+  std::uint64_t neighbour_list_builds() const { return lists_.builds(); }
 
   // The state a checkpoint needs (see WorldState), and its restoration into a World built from the same scene.
   // restore() throws std::invalid_argument, naming the first mismatch, when the bodies (ids, order) or the bonds
@@ -266,19 +268,12 @@ class World {
   bool set_slot_key(int i);  // body i's slot key at its position; whether it changed
   bool set_slot_keys();      // every body's; whether any changed
   // Body i's packed slot data, its vertices starting at `vert_begin` in world_xy_.
-  struct SlotStatic;
   SlotStatic slot_static_of(int i, int vert_begin) const;
   void contact_forces(double dt);
   // Adds the evaluated pairs' forces to the n bodies, stores their springs and notes the counts and extremes.
   void sum_contacts(int n);
-  // The broad phase (contact_stage.cpp): candidate_pairs() fills pairs_ with the slot pairs whose boxes overlap,
-  // from neighbour lists that build_skin() rebuilds (grid_pairs() on the boxes grown by the skin) once a body has
-  // moved half the skin since (skin_outrun()).
-  void candidate_pairs();
-  void grid_pairs(std::span<const geometry::Aabb> boxes);
-  void join_pair_chunks(int chunks);
-  bool skin_outrun();
-  void build_skin();
+  // The slots as the neighbour lists read them.
+  SlotView slot_view() const;
   // Whether this evaluation's drift loads come from the last full evaluation's linear model
   // (DriftSettings::update_every).
   bool drift_from_linear_model(double dt) const;
@@ -291,7 +286,8 @@ class World {
 
   WorldSettings settings_;
   contact::ContactLaw law_;
-  contact::GridBroadPhase broad_;
+  // The broad phase: the neighbour lists over the grid (dynamics/neighbour_lists.h).
+  NeighbourLists lists_;
   contact::ContactCache cache_;
   std::optional<bonds::BondSet> bonds_;
   std::vector<double> bond_mass_;  // mass of each body for the bonds, +inf unless dynamic [kg]
@@ -335,80 +331,27 @@ class World {
   // a function of the current positions alone (restarts reproduce it) and is re-sorted every step (insertion sort
   // from the last order: O(N) while floes keep their neighbours). Indices stay the public handle; slots are
   // private to the step. World-frame vertices and boxes are stored in slot order.
-  struct SlotKey {
-    std::uint64_t key = 0;
-    int body = 0;
-  };
-  struct SlotStatic {     // a packed copy of body data the pair loop reads; rewritten where the order changes
-    double mass = 0.0;    // [kg], +inf unless dynamic
-    double radius = 0.0;  // [m], +inf unless dynamic
-    double equivalent_radius = 0.0;  // sqrt(area / pi), also for walls [m]
-    BodyId id = 0;
-    int body = 0;        // body index
-    int vert_begin = 0;  // into world_xy_
-    int vert_count = 0;
-  };
-  struct SlotState {                    // gathered every force evaluation
-    Vec2 pos{0.0, 0.0}, vel{0.0, 0.0};  // [m], [m/s] (velocity as evaluated)
-    double omega = 0.0;                 // [rad/s]
-  };
   double order_cell_ = 1.0;  // [m], 4 x the mean equivalent radius of the dynamic bodies
   double radius_sum_ = 0.0;  // of the dynamic bodies [m]
   int dynamic_count_ = 0;
   std::vector<SlotKey> slots_;              // slot -> body, sorted by (key, body)
   std::vector<int> body_slot_;              // body -> slot
   std::vector<std::pair<int, int>> moved_;  // slot intervals [first, last] the last sort permuted
-  // Some slot changed bodies since the neighbour lists were built (their pairs may be out of order).
-  bool slots_moved_ = true;
   std::vector<SlotStatic> slot_static_;
   std::vector<SlotState> slot_state_;
   std::vector<std::uint8_t> slot_dynamic_;
   std::vector<geometry::Aabb> boxes_;  // world-frame bounding boxes, by slot
   std::vector<Vec2> slot_force_;       // contact force and torque of the current evaluation, by slot
   std::vector<double> slot_torque_;
-  // The broad phase's neighbour lists ("Verlet lists"): the pairs whose boxes, grown by skin_ / 2 on every side,
-  // overlapped at the last build, as neighbour lists of the build's slots; valid while no vertex has moved more than
-  // skin_ / 2 since (then every pair whose boxes overlap now is among them).
-  double skin_ = 0.0;           // [m], WorldSettings::broad_phase_skin or 0.2 x the mean equivalent radius
-  std::vector<double> reach_;   // circumradius about the centroid, by body [m]
-  std::vector<Vec2> skin_pos_;  // poses at the last build, by body
-  std::vector<double> skin_yaw_;
-  // Neighbour lists by the build's slots (CSR; each pair once, in its lower slot's list), and the build's
-  // slot -> body and body -> slot.
-  std::vector<int> skin_off_, skin_adj_, skin_body_, skin_slot_;
-  std::vector<double> skin_gap_;  // per listed pair: its distance at the build, from below, less a margin [m]
-  // Per listed pair: its overlap's topology at its last contact (planar_overlap checks it before use; unknown
-  // after a build).
-  std::vector<contact::OverlapTopology> skin_topo_;
-  // Per listed pair: the contact law's coefficients of its two bodies (a function of their radii and masses alone,
-  // so computed once per build, in the same arithmetic as per contact).
-  std::vector<contact::PairCoefficients> skin_coef_;
-  // Per listed pair: where its spring was stored among the contact cache's stores, and under which generation of
-  // the cache (ContactCache::stored): while the lists stand, a pair finds last step's spring without a lookup, and
-  // a pair not stored at the last step is a new contact. history_gen_ is the generation the last contact sum
-  // stored under; after a build or a restore of the cache the springs are looked up by key (one evaluation).
-  std::vector<std::uint32_t> skin_store_;
-  std::vector<std::uint64_t> skin_store_gen_;
+  std::vector<double> reach_;  // circumradius about the centroid, by body [m]
+  // Per neighbour-list entry: where the pair's history was stored is kept by the lists; history_gen_ is the
+  // contact cache's generation the last contact sum stored under (after a build or a restore of the cache the
+  // histories are looked up by key, for one evaluation).
   std::uint64_t history_gen_ = ~std::uint64_t{0};
-  bool lists_built_ = true;         // the lists were built in this evaluation (their entries have no history yet)
-  std::vector<double> skin_moved_;  // by body: how far its vertices may have moved since the build [m]
-  // Body i's skin_moved_ at its current pose, set; whether it is within `half` (half the skin). No vertex of the
-  // body has moved further since the build (a rotation by dθ moves a vertex at r by 2 r sin(dθ/2) <= r |dθ|).
-  bool skin_within(std::size_t i, double half) {
-    const double moved = (pos_[i] - skin_pos_[i]).norm() + std::abs(yaw_[i] - skin_yaw_[i]) * reach_[i];
-    skin_moved_[i] = moved;
-    return moved <= half;  // NaN counts as too far
-  }
-  // skin_outrun's verdict from kick_and_move()'s pass at the current positions, for the next contact stage to take
-  // once; none where positions changed from outside since (restore, add_body).
-  std::optional<bool> kick_outrun_;
-  std::vector<geometry::Aabb> skin_boxes_;
-  std::uint64_t skin_builds_ = 0;
   // scratch
   int threads_ = 1;
   std::vector<contact::CandidatePair> pairs_;
-  std::vector<std::vector<contact::CandidatePair>> pair_chunks_;  // the broad phase's scan, split between threads
-  mutable std::vector<ContactRecord> contacts_;                   // listed on demand (contacts())
+  mutable std::vector<ContactRecord> contacts_;  // listed on demand (contacts())
   mutable bool contacts_ready_ = true;
   std::size_t contact_count_ = 0;
   DeepestOverlap deepest_;
@@ -434,13 +377,37 @@ class World {
     double v2 = 0.0, q2 = 0.0;
     double energy = 0.0;  // [J]
   };
+  // What every pair of one contact evaluation shares.
+  struct PairStage {
+    double dt = 0.0;  // [s]
+    bool gjk = false, gradient = false, foundation = false;
+    contact::OverlapTerms terms = contact::OverlapTerms::basic;
+    double kappa = 0.0;     // the foundation modulus [Pa]
+    bool by_entry = false;  // last step's histories found through the neighbour-list entries (else by key)
+  };
+  // A touching pair as the force model sees it: the direction of the normal force on b (per unit force) and its
+  // moments about b's and a's centres, the approach rate along it and the slip rate along k x normal; with the
+  // foundation model its elastic force, stiffness and exponent.
+  struct PairDirection {
+    Vec2 dir_b{1.0, 0.0};
+    double arm_b = 0.0, arm_a = 0.0;                        // [m]
+    double rate = 0.0, slip = 0.0;                          // [m/s]
+    double elastic = 0.0, stiffness = 0.0, exponent = 2.5;  // [N], [N/m], [-]
+    Vec2 rb{0.0, 0.0};                                      // the contact point relative to b's centre [m]
+    Vec2 a_from_b{0.0, 0.0};                                // a's centre relative to b's, through the contact point [m]
+  };
+  bool measure_pair(const PairStage& stage, int a, int b, int entry, contact::PlanarContact& g, PairResult& r);
+  PairDirection pair_direction(const PairStage& stage, const contact::PlanarContact& g, int a, int b,
+                               contact::PairCoefficients& k) const;
+  void evaluate_pair(const PairStage& stage, std::size_t p, PairResult& r);
   std::vector<PairResult> pair_results_;
   std::vector<std::uint8_t> pair_hit_;  // pair_results_[p].hit, packed: what the sum's first pass reads
   // The parallel sum of pair_results_ (World::sum_contacts): per block of consecutive slots, its pairs (those whose
   // lower slot is in the block, from first_pair on), the ones of them whose upper slot lies in a later block, and
   // the block's share of the counts and extremes.
   struct SumBlock {
-    std::size_t first_pair = 0, first_store = 0, hits = 0;
+    int first_slot = 0, end_slot = 0;  // its slots: [first_slot, end_slot)
+    std::size_t first_pair = 0, end_pair = 0, first_store = 0, hits = 0;
     std::vector<std::size_t> spilled;
     std::uint64_t failures = 0, reused = 0;
     double worst_q2 = 0.0, worst_v2 = 0.0;
@@ -448,6 +415,8 @@ class World {
     DeepestOverlap deepest;
   };
   std::vector<SumBlock> sum_blocks_;
+  void sum_block(int c, std::span<contact::ContactCache::Entry> stores, std::uint64_t next_gen);
+  void merge_sum_blocks(std::size_t hits);
   // Each thread's place in the contact history (ContactCache::previous with a hint), a cache line apart.
   struct alignas(64) CacheHint {
     std::size_t at = 0;
@@ -462,6 +431,12 @@ class World {
     std::string error_text;  // and the field's message
   };
   std::vector<DriftScratch> drift_scratch_;
+  struct DriftStage;  // forcing_stage.cpp
+  void prepare_drift_scratch();
+  void add_side_drift(std::size_t i, const DriftStage& stage, const forcing::FloeMotion& m, DriftScratch& scratch,
+                      forcing::DriftLoad& load) const;
+  void add_surface_drift(std::size_t i, const DriftStage& stage, const forcing::FloeMotion& m, DriftScratch& scratch,
+                         forcing::DriftLoad& load) const;
   std::size_t max_quad_points_ = 0, max_vertices_ = 0;
   double worst_q2_ = 0.0;  // max over contacts of v^2 (k_n/m*)^4: the shortest contact has the largest
   double worst_v2_ = 0.0;

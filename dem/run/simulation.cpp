@@ -2,6 +2,7 @@
 
 #include "run/channel_monitor.h"
 #include "run/output_folder.h"
+#include "run/run_outputs.h"
 #include "run/velocity_grid.h"
 
 #include <algorithm>
@@ -30,12 +31,6 @@ std::string FrameClock::note(double dt) const {
 using geometry::Vec2;
 
 namespace {
-
-std::string join(const std::vector<std::string>& v, const char* sep) {
-  std::string out;
-  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
-  return out;
-}
 
 // The velocity grid the scene asks for (its region, or every body at t = 0), checked against the size limit.
 GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const dynamics::World& world) {
@@ -164,18 +159,6 @@ std::string output_block(const std::string& resolved) {
   return out;
 }
 
-// Keeps the newest `keep` of the numbered checkpoints this run's folder lists (io::OutputManifest), removing the
-// older ones; a file it does not list is never touched.
-void prune_checkpoints(const io::OutputManifest& manifest, int keep) {
-  std::vector<std::string> files;
-  for (const std::string& e : manifest.entries())
-    if (e.size() == 32 && e.rfind("checkpoints/checkpoint_", 0) == 0 && e.compare(e.size() - 3, 3, ".h5") == 0 &&
-        std::filesystem::exists(manifest.directory() / e))
-      files.push_back(e);
-  std::sort(files.begin(), files.end());
-  for (std::size_t k = 0; k + static_cast<std::size_t>(keep) < files.size(); ++k) manifest.remove_file(files[k]);
-}
-
 // Reads what a restart copies from an interrupted run's results: the first `frames` rows of every series and every
 // other dataset whole. Throws io::IoError (naming the dataset) when a block cannot be read or a series is short.
 void readable_frames(const io::hdf5::Group& g, std::uint64_t frames) {
@@ -273,229 +256,71 @@ Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const R
   restart_ = std::move(restart);
 }
 
+namespace {
+
+// Where the step's time went (polyfloe run --profile), on stderr.
+void print_profile(const dynamics::World& world) {
+  const dynamics::StepProfile& p = world.profile();
+  const double total = p.integrate + p.shapes + p.broad + p.narrow_and_law + p.forcing + p.bonds;
+  const double per = 1e6 / (static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world.size());
+  std::fprintf(stderr,
+               "profile (us per body-step): integrate %.3f, shapes + prediction %.3f, broad phase %.3f, "
+               "narrow phase + law %.3f, drift forces %.3f, bonds %.3f; total %.3f (%zu bodies, %llu steps)\n",
+               p.integrate * per, p.shapes * per, p.broad * per, p.narrow_and_law * per, p.forcing * per, p.bonds * per,
+               total * per, world.size(), static_cast<unsigned long long>(p.steps));
+  const std::uint64_t builds = world.neighbour_list_builds();
+  const double body_steps = static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world.size();
+  std::fprintf(stderr,
+               "contact search: %.2f candidate pairs and %.2f contacts per body-step (%.1f %% of them built from "
+               "the overlap's topology of the step before); neighbour lists built %llu times (every %.0f steps; "
+               "contact.broad_phase_skin)\n",
+               static_cast<double>(p.candidates) / body_steps, static_cast<double>(p.contacts) / body_steps,
+               100.0 * static_cast<double>(p.reused) / static_cast<double>(std::max<std::uint64_t>(p.contacts, 1)),
+               static_cast<unsigned long long>(builds),
+               static_cast<double>(p.steps) / static_cast<double>(std::max<std::uint64_t>(builds, 1)));
+}
+
+}  // namespace
+
 RunSummary Simulation::run() {
-  namespace fs = std::filesystem;
   using clock = std::chrono::steady_clock;
   const auto wall0 = clock::now();
-  const double dt = dt_;
   const double v_ref = scene::reference_speed(scene_);
-  const double t_end = scene_.time.duration;
-  const double interval = scene_.output.interval;
-  const scene::VelocityGridSettings& grid_settings = scene_.output.velocity_grid;
-  const scene::CheckpointSettings& checkpoints = scene_.output.checkpoint;
-  // The folder contract (run/output_folder.h): locked for the run, every file listed before it is written.
-  OutputFolder folder(options_.output_dir, restart_ ? OutputFolder::Mode::resume : OutputFolder::Mode::fresh);
-  const fs::path& out = folder.path();
-  io::OutputManifest& manifest = folder.manifest();
-  if (restart_) {  // what the interrupted writers left half-made (the frame folders: VtkSeriesWriter::resume)
-    manifest.remove_temporaries("");
-    manifest.remove_temporaries("checkpoints/");
-  }
-  manifest.record("scene.resolved.yaml");
-  io::write_file_atomic(out / "scene.resolved.yaml", scene::resolved_yaml(scene_));
-
-  const double rho_w = scene_.world.drift.water_density;
-  std::unique_ptr<io::VtkSeriesWriter> vtk;
-  std::unique_ptr<io::Hdf5Writer> h5;
-  if (scene_.output.vtk) vtk = std::make_unique<io::VtkSeriesWriter>(out, scene_.output.contacts, rho_w, &manifest);
-  std::optional<ChannelMonitor> channel;
-  std::vector<io::ExtraSeries> extra;
-  if (scene_.channel) {
-    channel.emplace(*scene_.channel, world_);
-    extra = {
-        {"channel", "area_flux", "m^2/s", "net ice area through the strait entrance since the last frame / time"},
-        {"channel", "area_passed", "m^2", "net ice area through the strait entrance since the start"},
-        {"channel", "upstream_area", "m^2", "ice area with centroids before the strait entrance"},
-        {"channel", "funnel_area", "m^2", "of which in the funnel, waiting to enter the strait"},
-        {"channel", "funnel_mean_speed", "m/s", "mean speed of the floes in the funnel"},
-        {"channel", "strait_floes", "1", "floes with centroids in the strait"},
-        {"channel", "strait_mean_speed", "m/s", "mean speed of the floes in the strait"},
-        {"channel", "jammed", "1",
-         "1 while no ice has passed for channel.jam_window and the funnel's ice is slower than channel.jam_speed"}};
-  }
-  fs::path adopt_from;  // a restart: the file the interrupted run's frames are copied from
-  if (restart_ && scene_.output.hdf5) {
-    adopt_from = restart_results_;
-    if (adopt_from == out / "results.h5") {  // moved aside while its frames are copied into a new results.h5
-      adopt_from = out / kInterruptedResults;
-      manifest.record(kInterruptedResults);
-      fs::rename(out / "results.h5", adopt_from);
-    }
-  }
-  if (scene_.output.hdf5) {
-    io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
-    manifest.record("results.h5");
-    manifest.record("results.xmf");
-    h5 = std::make_unique<io::Hdf5Writer>(out / "results.h5", world_, info, rho_w, extra);
-  }
-  std::optional<VelocityGridRecorder> velocity_grid;
-  if (grid_geometry_) {
-    velocity_grid.emplace(*grid_geometry_, interval / grid_settings.samples_per_frame,
-                          scene_.output.vtk ? out : fs::path(), h5.get(), &manifest);
-  }
-  int frames = 0;
-  std::vector<double> frame_times;
-  FrameClock schedule = FrameClock::make(interval, t_end, dt);
-  if (schedule.every_step) std::fprintf(stderr, "%s\n", schedule.note(dt).c_str());
-  std::vector<double> extra_values;
-  auto write_frame = [&] {
-    extra_values.clear();
-    if (channel) {
-      const ChannelSample c = channel->sample(world_);
-      extra_values = {c.area_flux,         c.area_passed,       c.upstream_area,
-                      c.funnel_area,       c.funnel_mean_speed, static_cast<double>(c.strait_floes),
-                      c.strait_mean_speed, c.jammed ? 1.0 : 0.0};
-    }
-    if (vtk) vtk->write_frame(world_);
-    if (velocity_grid) velocity_grid->write_frame(world_);
-    if (h5) h5->write_frame(world_, extra_values);
-    ++frames;
-    frame_times.push_back(world_.time());
-  };
-  auto checkpoint = [&](const char* kind, const fs::path& file) {
-    if (h5) {  // the copy of results.h5 first: it then holds at least the frames of every checkpoint on disk
-      h5->flush();
-      h5->write_xdmf(out / "results.xmf");
-      const fs::path snapshot = out / kResultsSnapshot;
-      manifest.record("checkpoints/");
-      manifest.record(kResultsSnapshot);
-      fs::create_directories(snapshot.parent_path());
-      const fs::path tmp = io::temporary_sibling(snapshot);
-      fs::copy_file(out / "results.h5", tmp, fs::copy_options::overwrite_existing);
-      io::commit_file_atomic(tmp, snapshot);
-    }
-    Checkpoint c;
-    c.kind = kind;
-    c.code_version = options_.version;
-    c.scene_resolved = scene::resolved_yaml(scene_);
-    c.body_signature = signature_;
-    c.dt = dt;
-    c.frames = frames;
-    c.frame_times = frame_times;
-    c.next_frame = schedule.next;
-    c.world = world_.state();
-    if (channel) c.channel = channel->state();
-    if (velocity_grid) c.next_sample = velocity_grid->next_sample();
-    manifest.record("checkpoints/");
-    manifest.record(file.lexically_relative(out).string());
-    write_checkpoint(file, c);
-  };
-
-  if (restart_) {
-    const Checkpoint& c = *restart_;
-    frames = c.frames;
-    frame_times = c.frame_times;
-    schedule.next = c.next_frame;
-    if (h5) {
-      h5->adopt_frames(adopt_from, frames);
-      h5->start_swmr();  // consistent on disk from here on ...
-      std::error_code ec;
-      fs::remove(out / kInterruptedResults, ec);  // ... so the interrupted run's file can go
-    }
-    if (vtk) vtk->resume(frame_times, world_.bonds() != nullptr);
-    if (velocity_grid) velocity_grid->resume(*c.next_sample, frame_times);
-    if (channel) channel->restore(*c.channel);
-  } else {
-    if (h5) h5->start_swmr();
-    world_.compute_forces(0.0);
-    write_frame();
-  }
-  // results.xmf describes the frames results.h5 holds: written with each checkpoint and at the end, and also when
-  // the run stops on an exception (unstable, the ice left the field, ...), whatever the checkpoint settings.
-  struct XdmfOnUnwind {
-    io::Hdf5Writer* h5;
-    fs::path file;
-    ~XdmfOnUnwind() {
-      if (h5 == nullptr || std::uncaught_exceptions() == 0) return;
-      try {
-        h5->write_xdmf(file);
-      } catch (const std::exception&) {
-        // the run's own error is the one to report
-      }
-    }
-  } xdmf_on_unwind{h5.get(), out / "results.xmf"};
+  RunOutputs outputs(scene_, world_, options_, dt_, signature_, grid_geometry_, restart_, restart_results_);
+  outputs.start(world_, restart_);
   const std::uint64_t first_step = world_.step_count();
-  io::Progress progress(t_end, options_.interactive, stderr, first_step);
+  io::Progress progress(scene_.time.duration, options_.interactive, stderr, first_step);
   const double start_time = world_.time();
 
-  // Steps of dt, landing on every frame time and on t_end (FrameClock); checkpoints at every `checkpoints.every`-th
-  // frame and at the end.
+  // Steps of dt, landing on every frame time and on the end time (FrameClock).
   try {
-    while (!schedule.at_end(world_.time())) {
-      world_.step(schedule.step(world_.time(), dt));
-      const bool last = schedule.at_end(world_.time());
+    while (!outputs.at_end(world_.time())) {
+      world_.step(outputs.step(world_.time()));
       // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check
       // costs a few ns per body against ~200 ns per body for the step.
-      check_stability(world_, dt, v_ref);
-      if (velocity_grid) velocity_grid->after_step(world_);
-      if (schedule.frame_due(world_.time())) {
-        schedule.frame_written(world_.time());
-        write_frame();
-        if (checkpoints.every > 0 && (last || frames % checkpoints.every == 0)) {
-          checkpoint(last ? "final" : "frame", checkpoint_path(out, frames));
-          prune_checkpoints(manifest, checkpoints.keep);
-        }
-      }
+      check_stability(world_, dt_, v_ref);
+      outputs.after_step(world_);
       progress.update(world_.time(), world_.step_count());
     }
   } catch (const InstabilityError& e) {
-    std::string message = e.what();
-    if (checkpoints.every > 0) {
-      const fs::path file = out / "checkpoints" / "unstable.h5";
-      try {
-        checkpoint("unstable", file);
-        message += " The state at that moment is in " + file.string() + " (for inspection)";
-        fs::path last;
-        try {
-          last = find_checkpoint(out);
-        } catch (const CheckpointError&) {
-          // none yet: the run failed before its first checkpoint
-        }
-        message += last.empty() ? "."
-                                : "; to continue with the change above, restart from the last checkpoint: "
-                                  "polyfloe run SCENE --restart " +
-                                      last.string() + ".";
-      } catch (const std::exception& w) {
-        message += std::string(" (the state could not be saved: ") + w.what() + ")";
-      }
-    }
-    throw InstabilityError(message);
+    throw InstabilityError(e.what() + outputs.save_unstable(world_));
   }
   progress.finish(world_.time(), world_.step_count());
-  if (h5) h5->write_xdmf(out / "results.xmf");
+  outputs.finish();
 
   RunSummary s;
   s.steps = world_.step_count() - first_step;
   s.start_time = start_time;
   s.simulated = world_.time();
   s.wall = std::chrono::duration<double>(clock::now() - wall0).count();
-  s.dt = dt;
-  s.frames = frames;
-  if (channel) {
+  s.dt = dt_;
+  s.frames = outputs.frames();
+  if (const ChannelMonitor* channel = outputs.channel()) {
     s.channel_area_passed = channel->area_passed();
     s.channel_jam_time = channel->jam_time();
   }
-  s.output_dir = out;
-  if (options_.profile) {
-    const dynamics::StepProfile& p = world_.profile();
-    const double total = p.integrate + p.shapes + p.broad + p.narrow_and_law + p.forcing + p.bonds;
-    const double per = 1e6 / (static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world_.size());
-    std::fprintf(stderr,
-                 "profile (us per body-step): integrate %.3f, shapes + prediction %.3f, broad phase %.3f, "
-                 "narrow phase + law %.3f, drift forces %.3f, bonds %.3f; total %.3f (%zu bodies, %llu steps)\n",
-                 p.integrate * per, p.shapes * per, p.broad * per, p.narrow_and_law * per, p.forcing * per,
-                 p.bonds * per, total * per, world_.size(), static_cast<unsigned long long>(p.steps));
-    const std::uint64_t builds = world_.neighbour_list_builds();
-    const double body_steps = static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world_.size();
-    std::fprintf(stderr,
-                 "contact search: %.2f candidate pairs and %.2f contacts per body-step (%.1f %% of them built from "
-                 "the overlap's topology of the step before); neighbour lists built %llu times (every %.0f steps; "
-                 "contact.broad_phase_skin)\n",
-                 static_cast<double>(p.candidates) / body_steps, static_cast<double>(p.contacts) / body_steps,
-                 100.0 * static_cast<double>(p.reused) / static_cast<double>(std::max<std::uint64_t>(p.contacts, 1)),
-                 static_cast<unsigned long long>(builds),
-                 static_cast<double>(p.steps) / static_cast<double>(std::max<std::uint64_t>(builds, 1)));
-  }
+  s.output_dir = outputs.path();
+  if (options_.profile) print_profile(world_);
   return s;
 }
 

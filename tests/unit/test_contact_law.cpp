@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <limits>
 
+#include <Eigen/Core>
+
 #include "contact/contact_law.h"
 
 using namespace polyfloe;
@@ -195,6 +197,35 @@ TEST(ContactLaw, TangentialSpringStickAndSlip) {
   const auto f = smooth.evaluate(cs, d, 0.0, 1.0, 0.01, dt);
   EXPECT_EQ(f.tangential, 0.0);
   EXPECT_EQ(f.spring, 0.0);
+}
+
+TEST(ContactLaw, TheTangentialSpringIsOneLawInThePlaneAndInSpace) {
+  // contact::tangential_spring serves the planar world (a scalar along t) and the spatial one (a vector in the
+  // tangent plane): along any direction e the vector law is the scalar law times e; off one line, the capped force
+  // has Coulomb's magnitude and points against the advanced spring.
+  using Vec3 = Eigen::Vector3d;
+  const double k_t = 2.0e6, limit = 500.0, dt = 1e-3;  // [N/m], [N], [s]
+  const Vec3 e = Vec3(0.3, -0.5, 0.8).normalized();
+  for (double s0 : {0.0, 1e-4, -2e-4, 3e-4}) {
+    for (double v : {0.0, 0.05, -0.4, 1.0}) {
+      const auto plane = contact::tangential_spring(s0, v, k_t, limit, dt);
+      const auto space = contact::tangential_spring<Vec3>(s0 * e, v * e, k_t, limit, dt);
+      EXPECT_EQ(plane.sliding, space.sliding) << s0 << " " << v;
+      EXPECT_LT((space.force - plane.force * e).norm(), 1e-12 * limit) << s0 << " " << v;
+      EXPECT_LT((space.spring - plane.spring * e).norm(), 1e-15) << s0 << " " << v;
+      EXPECT_LE(std::abs(plane.force), limit * (1.0 + 1e-15));
+      if (!plane.sliding) {
+        EXPECT_EQ(plane.force, -k_t * (s0 + v * dt));
+      }
+    }
+  }
+  const Vec3 s0(2e-4, 0.0, 0.0), slip(0.0, 0.5, 0.0);
+  const auto t = contact::tangential_spring(s0, slip, k_t, limit, dt);
+  const Vec3 advanced = s0 + slip * dt;
+  ASSERT_TRUE(t.sliding);
+  EXPECT_NEAR(t.force.norm(), limit, 1e-12 * limit);
+  EXPECT_NEAR(t.force.normalized().dot(-advanced.normalized()), 1.0, 1e-15);
+  EXPECT_LT((t.spring + t.force / k_t).norm(), 1e-18);
 }
 
 TEST(ContactLaw, HertzContactDurationAgainstIntegration) {
