@@ -1,5 +1,4 @@
-// Convex polyhedra: mass properties against closed forms, validation, the submerged part, and the face-clipping
-// contact manifold.
+// Convex polyhedra: mass properties against closed forms, validation, the submerged part.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,8 +6,8 @@
 
 #include <Eigen/Geometry>
 
-#include "contact/manifold.h"
 #include "geometry/polyhedron.h"
+#include "placed_polyhedron.h"
 
 namespace {
 
@@ -17,11 +16,7 @@ using polyfloe::geometry::ConvexPolyhedron;
 using polyfloe::geometry::Mat3;
 using polyfloe::geometry::Vec3;
 
-std::vector<Vec3> world(const ConvexPolyhedron& s, const Mat3& r, const Vec3& x) {
-  std::vector<Vec3> w;
-  for (const auto& v : s.vertices()) w.push_back(r * v + x);
-  return w;
-}
+using polyfloe::tsupport::placed;
 
 TEST(Polyhedron, BoxVolumeAndInertiaAreTheClosedForms) {
   const auto b = ConvexPolyhedron::box({2.0, 3.0, 5.0});
@@ -59,7 +54,7 @@ TEST(Polyhedron, BadSizesAreRefused) {
 TEST(Polyhedron, SubmergedPartOfATiltedBoxIsExact) {
   const auto b = ConvexPolyhedron::box({2.0, 2.0, 2.0});
   // level box, centre at z = 0.4: 0.6 m of its 2 m height below z = 0
-  auto w = world(b, Mat3::Identity(), {1.0, -2.0, 0.4});
+  auto w = placed(b, Mat3::Identity(), {1.0, -2.0, 0.4});
   auto s = polyfloe::geometry::submerged_part(b, w, 0.0);
   EXPECT_NEAR(s.volume, 4.0 * 0.6, 1e-12);
   EXPECT_NEAR(s.centroid.x(), 1.0, 1e-12);
@@ -67,16 +62,16 @@ TEST(Polyhedron, SubmergedPartOfATiltedBoxIsExact) {
   EXPECT_NEAR(s.centroid.z(), -0.3, 1e-12);
   // edge-down at 45 degrees about y, centre at the water level: half the volume, by symmetry under the centre
   const Mat3 r = Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()).toRotationMatrix();
-  w = world(b, r, {0.0, 0.0, 0.0});
+  w = placed(b, r, {0.0, 0.0, 0.0});
   s = polyfloe::geometry::submerged_part(b, w, 0.0);
   EXPECT_NEAR(s.volume, 4.0, 1e-12);
   EXPECT_NEAR(s.centroid.x(), 0.0, 1e-12);
   // the submerged half is a triangular prism of height sqrt(2) below the centre: centroid at -sqrt(2)/3
   EXPECT_NEAR(s.centroid.z(), -std::sqrt(2.0) / 3.0, 1e-12);
   // wholly under and wholly above
-  w = world(b, r, {0.0, 0.0, -5.0});
+  w = placed(b, r, {0.0, 0.0, -5.0});
   EXPECT_NEAR(polyfloe::geometry::submerged_part(b, w, 0.0).volume, 8.0, 1e-12);
-  w = world(b, r, {0.0, 0.0, 5.0});
+  w = placed(b, r, {0.0, 0.0, 5.0});
   EXPECT_EQ(polyfloe::geometry::submerged_part(b, w, 0.0).volume, 0.0);
 }
 
@@ -86,51 +81,13 @@ TEST(Polyhedron, SubmergedPartOfATiltedBoxIsExact) {
 TEST(Polyhedron, SubmergedPartOfA64GonFarFromTheOrigin) {
   const auto s = ConvexPolyhedron::prism(ConvexPolygon::regular(64, 20.0), 1.0);
   const double draft = 0.8976;
-  const auto w = world(s, Mat3::Identity(), {5000.0, -5000.0, 0.5 - draft});
+  const auto w = placed(s, Mat3::Identity(), {5000.0, -5000.0, 0.5 - draft});
   const auto sub = polyfloe::geometry::submerged_part(s, w, 0.0);
   const double area = s.volume() / 1.0;
   EXPECT_NEAR(sub.volume, area * draft, 1e-12 * area * draft);
   EXPECT_NEAR(sub.centroid.x(), 5000.0, 1e-12 * 5000.0);
   EXPECT_NEAR(sub.centroid.y(), -5000.0, 1e-12 * 5000.0);
   EXPECT_NEAR(sub.centroid.z(), -0.5 * draft, 1e-12);
-}
-
-TEST(Manifold, FaceOnFaceGivesFourPointsAndACentredForce) {
-  const auto plate = ConvexPolyhedron::box({10.0, 10.0, 1.0});
-  const auto cube = ConvexPolyhedron::box({2.0, 2.0, 2.0});
-  const Mat3 id = Mat3::Identity();
-  const auto wp = world(plate, id, {0.0, 0.0, -0.5});  // top face at z = 0
-  const auto wc = world(cube, id, {0.3, -0.2, 0.99});  // 1 cm into the plate
-  const auto m = polyfloe::contact::clip_manifold(plate, id, wp, cube, id, wc, Vec3::UnitZ());
-  ASSERT_EQ(m.count, 4);
-  EXPECT_NEAR(m.max_depth(), 0.01, 1e-12);
-  EXPECT_NEAR((m.normal - Vec3::UnitZ()).norm(), 0.0, 1e-14);
-  const Vec3 c = m.centre();
-  EXPECT_NEAR(c.x(), 0.3, 1e-12);  // no lever arm: the face-on force makes no torque
-  EXPECT_NEAR(c.y(), -0.2, 1e-12);
-}
-
-TEST(Manifold, EdgeOnFaceGivesTheEdgeAndItsMidpoint) {
-  const auto plate = ConvexPolyhedron::box({10.0, 10.0, 1.0});
-  const auto cube = ConvexPolyhedron::box({2.0, 2.0, 2.0});
-  const Mat3 id = Mat3::Identity();
-  const double alpha = 20.0 * std::numbers::pi / 180.0;
-  const Mat3 r = Eigen::AngleAxisd(alpha, Vec3::UnitY()).toRotationMatrix();
-  const auto wp = world(plate, id, {0.0, 0.0, -0.5});
-  // the lowest edge is the one at body (x, z) with the lowest world z; put it 2 mm into the plate
-  Vec3 low = Vec3::Zero();
-  for (const auto& v : cube.vertices()) {
-    if ((r * v).z() < low.z()) low = r * v;
-  }
-  const auto wc = world(cube, r, {0.0, 0.0, -low.z() - 0.002});
-  const auto m = polyfloe::contact::clip_manifold(plate, id, wp, cube, r, wc, Vec3::UnitZ());
-  ASSERT_EQ(m.count, 2);
-  EXPECT_NEAR(m.depths[0], 0.002, 1e-12);
-  EXPECT_NEAR(m.depths[1], 0.002, 1e-12);
-  const Vec3 c = m.centre();
-  EXPECT_NEAR(c.x(), low.x(), 1e-12);  // lever arm of the striking edge: r cos(alpha + pi/4)
-  EXPECT_NEAR(std::abs(c.x()), std::sqrt(2.0) * std::cos(alpha + std::numbers::pi / 4), 1e-12);
-  EXPECT_NEAR(c.y(), 0.0, 1e-12);
 }
 
 }  // namespace

@@ -524,3 +524,27 @@ TEST(SceneErrors, ForcingBlock) {
 
 }  // namespace
 }  // namespace polyfloe::scene
+
+namespace polyfloe::scene {
+namespace {
+
+// JSON is YAML's subset and quotes every word: "auto" and enumerated values read as words, plain or quoted; a
+// quoted number is still refused as text.
+TEST(SceneReader, AJsonSceneReadsItsWords) {
+  const Scene s = parse_scene(R"({"run": {"duration": 1, "dt": "auto", "reference_speed": "auto"},
+    "contact": {"narrow_phase": "exact", "force_model": "gradient"},
+    "output": {"velocity_grid": {"enabled": true, "region": "auto"}},
+    "floes": [{"rectangle": {"width": 10, "height": 10}}]})",
+                              "t.json");
+  EXPECT_FALSE(s.time.dt.has_value());
+  EXPECT_FALSE(s.output.velocity_grid.region.has_value());
+  try {
+    (void)parse_scene(R"({"run": {"duration": "1"}, "floes": [{"rectangle": {"width": 10, "height": 10}}]})", "t.json");
+    ADD_FAILURE() << "a quoted number was read as a number";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("got the quoted string '1'"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace polyfloe::scene

@@ -6,11 +6,13 @@
 //   a free floe with no force keeps its velocity and angular velocity bit for bit, and moves by v t;
 //   fixed bodies never move (bit for bit), even when hit; kinematic bodies keep their prescribed velocity bit for
 //   bit whatever the contact forces on them, and move by v t;
-//   shortest_contact_duration = the Hertz duration of two of the lightest, smallest floes.
+//   shortest_contact_duration = the Hertz duration of two of the lightest, smallest floes;
+//   a state restored into a World built the same way continues bit for bit; a state of other bodies is refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -240,4 +242,65 @@ TEST(World, KinematicBodiesKeepTheirPrescribedMotion) {
   EXPECT_GT(contact_steps, 100);
   EXPECT_GT(max_force, 1.0e3);
   for (int k = 1; k <= 6; ++k) EXPECT_GT(w.velocities()[k].x(), 0.5) << "floe " << k << " was pushed";
+}
+
+TEST(World, RestoredStateContinuesBitForBit) {
+  // Two floes collide with friction: a state taken during the contact (spring history, forces) and restored into
+  // a freshly built world must continue exactly as the original.
+  auto build = [] {
+    dynamics::WorldSettings ws;
+    ws.contact.friction = 0.5;
+    dynamics::World w(ws);
+    const auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
+    w.add_body({.id = 1, .shape = sq, .position = {0.0, 0.0}, .velocity = {1.0, 0.3}, .angular_velocity = 0.05});
+    w.add_body({.id = 2, .shape = sq, .position = {10.5, 2.0}, .velocity = {-1.0, 0.0}});
+    return w;
+  };
+  dynamics::World a = build();
+  const double dt = 2e-4;
+  for (int k = 0; k < 3000 && a.contact_cache().size() == 0; ++k) a.step(dt);
+  for (int k = 0; k < 50; ++k) a.step(dt);
+  ASSERT_GT(a.contact_cache().size(), 0u) << "the state must be taken during a contact";
+  dynamics::World b = build();
+  b.restore(a.state());
+  for (int k = 0; k < 2000; ++k) {
+    a.step(dt);
+    b.step(dt);
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(std::memcmp(&a.positions()[i], &b.positions()[i], sizeof(Vec2)), 0);
+    EXPECT_EQ(std::memcmp(&a.velocities()[i], &b.velocities()[i], sizeof(Vec2)), 0);
+    EXPECT_EQ(a.angular_velocities()[i], b.angular_velocities()[i]);
+  }
+  EXPECT_EQ(a.time(), b.time());
+  EXPECT_EQ(a.step_count(), b.step_count());
+}
+
+TEST(World, StateOfOtherBodiesIsRefused) {
+  auto floes = [](int n) {
+    dynamics::World w(no_drift());
+    for (int i = 0; i < n; ++i)
+      w.add_body({.id = static_cast<dynamics::BodyId>(100 + i),
+                  .shape = rect(10, 10),
+                  .position = {20.0 * i, 0.0},
+                  .velocity = {1.0, 0.0}});
+    return w;
+  };
+  dynamics::World a = floes(3);
+  dynamics::World fewer = floes(2);
+  EXPECT_THROW(fewer.restore(a.state()), std::invalid_argument);
+  dynamics::WorldState s = a.state();
+  s.ids[1] = 999;
+  try {
+    a.restore(s);
+    FAIL() << "other ids must be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("id 999"), std::string::npos) << e.what();
+  }
+  s = a.state();
+  s.velocity[0] = {std::numeric_limits<double>::infinity(), 0.0};
+  EXPECT_THROW(a.restore(s), std::invalid_argument);
+  s = a.state();
+  s.yaw.pop_back();
+  EXPECT_THROW(a.restore(s), std::invalid_argument);
 }

@@ -1,4 +1,4 @@
-// The strait end to end (of_cases/strait/Allrun --quick on a copy of the case; of_cases/tidal the same way):
+// The strait end to end (of_cases/strait/Allrun --quick on a copy of the case; of_cases/tidal: test_tidal_openfoam):
 // OpenFOAM's steady flow ->
 // `polyfloe field import` -> the ice run -> VTK and a picture. Then the physics of the imported current and of the
 // ice it drives, and the gridding error against probing the OpenFOAM mesh directly (coupling/'s direct mode).
@@ -16,6 +16,7 @@
 #include <random>
 #include <sstream>
 
+#include "openfoam_case_run.h"
 #include "text_file.h"
 #include "forcing/gridded_field.h"
 #include "formats/field_file.h"
@@ -30,43 +31,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kSource = POLYFLOE_SOURCE_DIR;
-const fs::path kBuild = fs::path(POLYFLOE_BINARY).parent_path();
-
+using tsupport::CaseRun;
 using tsupport::slurp;
-
-// A copy of of_cases/<name> (and common/) run once with `Allrun --quick` for every test of a suite.
-struct CaseRun {
-  fs::path root, dir;
-  int status = -1;
-  void run(const char* name) {
-    std::string tmpl = (fs::temp_directory_path() / "polyfloe_test_of_case.XXXXXX").string();
-    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
-    root = tmpl;
-    fs::create_directories(root / "of_cases");
-    fs::copy(kSource / "of_cases" / "common", root / "of_cases" / "common", fs::copy_options::recursive);
-    // tidal links some files to strait's
-    fs::copy(kSource / "of_cases" / "strait", root / "of_cases" / "strait", fs::copy_options::recursive);
-    if (std::string(name) != "strait")
-      fs::copy(kSource / "of_cases" / name, root / "of_cases" / name,
-               fs::copy_options::recursive | fs::copy_options::copy_symlinks);
-    dir = root / "of_cases" / name;
-    // A copy of the source tree may hold a previous run's outputs: start clean.
-    const std::string clean = "bash " + (dir / "Allclean").string();
-    ASSERT_EQ(std::system(clean.c_str()), 0);
-    const std::string cmd = "POLYFLOE_ROOT=" + kSource.string() + " POLYFLOE_BUILD_DIR=" + kBuild.string() + " bash " +
-                            (dir / "Allrun").string() + " --quick > " + (root / "allrun.log").string() + " 2>&1";
-    status = std::system(cmd.c_str());
-  }
-  void check() const {
-    ASSERT_EQ(status, 0) << dir.filename().string()
-                         << "/Allrun --quick failed (is OpenFOAM installed? bash scripts/setup.sh):\n"
-                         << slurp(root / "allrun.log");
-  }
-  ~CaseRun() {
-    std::error_code ec;
-    if (!root.empty()) fs::remove_all(root, ec);
-  }
-};
 
 class Strait : public ::testing::Test {
  protected:
@@ -193,41 +159,6 @@ TEST_F(Strait, IceNearTheWallsLagsTheIceInTheMiddle) {
   EXPECT_GT(mid, 0.1);  // moving with the current after a minute
   // Measured: 0.30 m/s near the walls, 0.52 m/s in the middle.
   EXPECT_LT(wall, 0.85 * mid) << "near the walls " << wall << " m/s, middle " << mid << " m/s";
-}
-
-// The tidal pulse (of_cases/tidal): every snapshot imported, and the ice run sees the current change in time.
-class Tidal : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    run_ = std::make_unique<CaseRun>();
-    run_->run("tidal");
-  }
-  static void TearDownTestSuite() { run_.reset(); }
-  void SetUp() override { run_->check(); }
-  static inline std::unique_ptr<CaseRun> run_;
-};
-
-TEST_F(Tidal, EverySnapshotIsImportedAndTheCurrentFollowsTheInflow) {
-  const io::FieldFile f = io::read_field_file(run_->dir / "field.h5");
-  ASSERT_EQ(f.grid.t.size(), 21u);  // 0, 60, ..., 1200 s
-  EXPECT_EQ(f.grid.t.front(), 0.0);
-  EXPECT_EQ(f.grid.t.back(), 1200.0);
-  forcing::GriddedFieldOptions o;
-  o.time_outside = forcing::TimeBoundary::error;
-  const forcing::GriddedField field(std::make_shared<const forcing::GridData>(f.grid), o);
-  // The inflow 0.5 (1 - cos(2 pi t / 1200 s)) m/s: at rest at 0, 1 m/s at 600 s; the basin follows it (the flow
-  // is nearly incompressible in 2-D: the whole basin answers the inlet at once), the jet 4-5 times faster.
-  const forcing::Vec3 basin{500, 500, -0.5}, jet{1700, 500, -0.5};
-  EXPECT_NEAR(field.at(basin, 0).norm(), 0.0, 1e-9);
-  EXPECT_NEAR(field.at(basin, 600).x(), 1.06, 0.06);
-  EXPECT_GT(field.at(jet, 600).x(), 4.5);
-  EXPECT_NEAR(field.at(basin, 300).x(), 0.5 * 1.06, 0.06);
-  // Between snapshots: linear in time.
-  const double a = field.at(jet, 240).x(), b = field.at(jet, 300).x();
-  EXPECT_NEAR(field.at(jet, 270).x(), 0.5 * (a + b), 1e-12);
-  EXPECT_THROW((void)field.at(jet, 1200.5), forcing::FieldError);
-  EXPECT_TRUE(fs::is_regular_file(run_->dir / "field" / "field_0020.vtr"));
-  EXPECT_TRUE(fs::is_regular_file(run_->dir / "ice" / "openfoam" / "floes.pvd"));
 }
 
 }  // namespace
