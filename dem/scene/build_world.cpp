@@ -203,98 +203,76 @@ void check_bodies_in_water(const dynamics::World& world) {
   }
 }
 
-}  // namespace
+// The World as it is built, part by part, with what the parts placed so far (for the overlap checks and the floe
+// field's obstacles) and the next free id.
+class WorldBuilder {
+ public:
+  explicit WorldBuilder(const Scene& scene) : scene_(scene), world_(settings_of(scene)) {}
 
-dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
-  dynamics::WorldSettings settings = scene.world;
-  settings.contact.reference_speed = reference_speed(scene);
-  dynamics::World world(settings);
+  // Explicit bodies: their own ids, or the next free ones in list order.
+  void add_bodies() {
+    std::vector<std::optional<std::uint64_t>> given;
+    for (const BodySpec& b : scene_.bodies) given.push_back(b.id);
+    const std::vector<BodyId> ids =
+        detail::assign_ids(given, [&](std::size_t i) { return body_source(scene_.bodies[i], i); });
+    for (BodyId id : ids) next_ = std::max(next_, id + 1);
+    for (std::size_t i = 0; i < scene_.bodies.size(); ++i) {
+      const BodySpec& b = scene_.bodies[i];
+      const std::string source = body_source(b, i);
+      std::shared_ptr<const geometry::ConvexPolygon> shape;
+      try {
+        shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(b.polygon));
+      } catch (const geometry::GeometryError& e) {
+        throw SceneError(source + ": polygon: " + e.what());
+      }
+      const bool dynamic = b.motion == Motion::dynamic;
+      if (dynamic) max_thickness_ = std::max(max_thickness_, b.thickness);
+      bodies_.push_back(placed(source, *shape, b.position, b.yaw, dynamic));
 
-  // Ids: the given ones (unique), then the next free ones in list order.
-  std::vector<std::optional<std::uint64_t>> given;
-  for (const BodySpec& b : scene.bodies) given.push_back(b.id);
-  const std::vector<BodyId> ids =
-      detail::assign_ids(given, [&](std::size_t i) { return body_source(scene.bodies[i], i); });
-  BodyId next = 0;
-  for (BodyId id : ids) next = std::max(next, id + 1);
-
-  // Explicit bodies.
-  std::vector<PlacedBody> bodies;
-  double max_thickness = 0.0;  // of the dynamic bodies, for the walls' thickness [m]
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const BodySpec& b = scene.bodies[i];
-    const std::string source = body_source(b, i);
-    std::shared_ptr<const geometry::ConvexPolygon> shape;
-    try {
-      shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(b.polygon));
-    } catch (const geometry::GeometryError& e) {
-      throw SceneError(source + ": polygon: " + e.what());
+      BodyDesc desc;
+      desc.id = ids[i];
+      desc.shape = shape;
+      desc.position = b.position;
+      desc.yaw = b.yaw;
+      desc.velocity = b.velocity;
+      desc.angular_velocity = b.angular_velocity;
+      desc.thickness = b.thickness;
+      desc.density = scene_.ice_density;
+      desc.motion = b.motion;
+      desc.external_force = b.external_force;
+      desc.external_torque = b.external_torque;
+      add(world_, desc, source);
     }
-    const bool dynamic = b.motion == Motion::dynamic;
-    if (dynamic) max_thickness = std::max(max_thickness, b.thickness);
-    bodies.push_back(placed(source, *shape, b.position, b.yaw, dynamic));
-
-    BodyDesc desc;
-    desc.id = ids[i];
-    desc.shape = shape;
-    desc.position = b.position;
-    desc.yaw = b.yaw;
-    desc.velocity = b.velocity;
-    desc.angular_velocity = b.angular_velocity;
-    desc.thickness = b.thickness;
-    desc.density = scene.ice_density;
-    desc.motion = b.motion;
-    desc.external_force = b.external_force;
-    desc.external_torque = b.external_torque;
-    add(world, desc, source);
+    if (const auto pair = first_overlap(bodies_, bodies_.size(), [](std::size_t, std::size_t) { return true; }))
+      throw SceneError(bodies_[pair->second].source + ": overlaps " + bodies_[pair->first].source +
+                       " initially; move them apart");
+    if (scene_.floe_field) max_thickness_ = std::max(max_thickness_, scene_.floe_field->thickness);
+    if (scene_.ice_sheet) max_thickness_ = std::max(max_thickness_, scene_.ice_sheet->thickness);
+    if (!(max_thickness_ > 0.0)) max_thickness_ = 1.0;
   }
-  if (const auto pair = first_overlap(bodies, bodies.size(), [](std::size_t, std::size_t) { return true; }))
-    throw SceneError(bodies[pair->second].source + ": overlaps " + bodies[pair->first].source +
-                     " initially; move them apart");
-  if (scene.floe_field) max_thickness = std::max(max_thickness, scene.floe_field->thickness);
-  if (scene.ice_sheet) max_thickness = std::max(max_thickness, scene.ice_sheet->thickness);
-  if (!(max_thickness > 0.0)) max_thickness = 1.0;
-
-  // A fixed wall (world-frame vertices), as thick as the thickest floe (its mass never enters the dynamics); a
-  // dynamic body placed before that overlaps it is an error, in `overlap_message(that body)`'s words.
-  auto add_wall = [&](const std::vector<Vec2>& vertices, const std::string& source, const auto& overlap_message) {
-    Vec2 centre{0.0, 0.0};
-    auto shape =
-        std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(vertices, &centre));
-    PlacedBody p = placed(source, *shape, centre, 0.0, false);
-    for (const PlacedBody& q : bodies)
-      if (q.dynamic && overlapping(p, q)) throw SceneError(overlap_message(q));
-    bodies.push_back(std::move(p));
-    BodyDesc desc;
-    desc.id = next++;
-    desc.shape = shape;
-    desc.position = centre;
-    desc.thickness = max_thickness;
-    desc.density = scene.ice_density;
-    desc.motion = Motion::fixed;
-    add(world, desc, source);
-  };
 
   // Channel walls.
-  if (scene.channel) {
-    const std::string where = scene.channel->source.where.empty() ? "channel" : scene.channel->source.where;
-    for (const WallPolygon& wall : channel_walls(*scene.channel)) {
+  void add_channel() {
+    if (!scene_.channel) return;
+    const std::string where = scene_.channel->source.where.empty() ? "channel" : scene_.channel->source.where;
+    for (const WallPolygon& wall : channel_walls(*scene_.channel)) {
       const std::string source = where + " (channel " + wall.name + ")";
       add_wall(wall.vertices, source,
                [&](const PlacedBody& q) { return q.source + ": overlaps " + source + " initially"; });
     }
   }
 
-  // The ocean field file's land: fixed walls (land: walls), as thick as the thickest floe; without them, an obstacle
-  // only for the floe field, which never places floes on land.
-  std::vector<std::vector<Vec2>> land;
-  if (const forcing::FieldSpec& f = scene.ocean_field; f.kind == forcing::FieldKind::file && f.grid) {
+  // The ocean field file's land: fixed walls (land: walls), as thick as the thickest floe; without them, an
+  // obstacle only for the floe field, which never places floes on land.
+  void add_land() {
+    const forcing::FieldSpec& f = scene_.ocean_field;
+    if (f.kind != forcing::FieldKind::file || !f.grid) return;
     const std::string source = "the land of " + f.path;
     for (const forcing::LandRectangle& r : forcing::land_rectangles(*f.grid)) {
       const Vec2 lo = r.lo + f.offset, hi = r.hi + f.offset;
       const std::vector<Vec2> box{lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
       if (!f.land_walls) {
-        land.push_back(box);
+        land_.push_back(box);
         continue;
       }
       add_wall(box, source + " (land: walls)", [&](const PlacedBody& q) {
@@ -305,74 +283,43 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     }
   }
 
-  // The ice sheet's cells: touching each other, overlapping nothing placed above.
-  if (const auto& sheet = scene.ice_sheet) {
+  // The ice sheet's cells: touching each other, overlapping nothing placed above; bonded where it says so.
+  void add_ice_sheet() {
+    const auto& sheet = scene_.ice_sheet;
+    if (!sheet) return;
     const std::string where = sheet->source.where.empty() ? "ice_sheet" : sheet->source.where;
-    const std::size_t placed_before = bodies.size();
+    const std::size_t placed_before = bodies_.size();
     const SheetElementsOut elements = ice_sheet_elements(*sheet);
-    const std::vector<BodyDesc> descs = ice_sheet_bodies(*sheet, scene.ice_density, next);
+    const std::vector<BodyDesc> descs = ice_sheet_bodies(*sheet, scene_.ice_density, next_);
     std::vector<int> index(descs.size());
     for (std::size_t e = 0; e < descs.size(); ++e) {
       const BodyDesc& desc = descs[e];
-      bodies.push_back(
+      bodies_.push_back(
           placed(where + " (ice_sheet element " + std::to_string(e) + ")", *desc.shape, desc.position, 0.0, true));
-      add(world, desc, where);
-      index[e] = world.index_of(desc.id);
+      add(world_, desc, where);
+      index[e] = world_.index_of(desc.id);
     }
-    const auto pair = first_overlap(bodies, bodies.size(), [&](std::size_t a, std::size_t b) {
+    const auto pair = first_overlap(bodies_, bodies_.size(), [&](std::size_t a, std::size_t b) {
       return a < placed_before && b >= placed_before;  // the sheet's cells against what was placed before it
     });
     if (pair)
-      throw SceneError(bodies[pair->second].source + ": overlaps " + bodies[pair->first].source +
+      throw SceneError(bodies_[pair->second].source + ": overlaps " + bodies_[pair->first].source +
                        " initially; move the body or the sheet");
-    next += static_cast<BodyId>(descs.size());
-    if (const auto& b = sheet->bonds) {
-      bonds::BondMaterial m;
-      m.youngs_modulus = scene.world.contact.youngs_modulus;
-      m.poisson_ratio = scene.world.contact.poisson_ratio;
-      m.tensile_strength = b->tensile_strength;
-      m.shear_strength = b->shear_strength;
-      m.friction_angle = b->friction_angle;
-      m.points_per_face = b->points_per_face;
-      m.damping_ratio = b->damping_ratio;
-      try {
-        bonds::BondSet set(m);
-        for (const SheetFace& f : elements.faces) {
-          const BodyDesc &da = descs[static_cast<std::size_t>(f.a)], &db = descs[static_cast<std::size_t>(f.b)];
-          set.add_face({.a = index[static_cast<std::size_t>(f.a)],
-                        .b = index[static_cast<std::size_t>(f.b)],
-                        .id_a = da.id,
-                        .id_b = db.id,
-                        .p0 = f.p0,
-                        .p1 = f.p1,
-                        .thickness = sheet->thickness,
-                        .centre_a = da.position,
-                        .centre_b = db.position,
-                        .yaw_a = 0.0,
-                        .yaw_b = 0.0});
-        }
-        for (const SheetCorner& c : elements.corners) {
-          if (c.faces.empty()) continue;  // a corner on the region's boundary with no face at it
-          set.add_corner_pair(index[static_cast<std::size_t>(c.a)], index[static_cast<std::size_t>(c.b)], c.faces);
-        }
-        world.set_bonds(std::move(set));
-      } catch (const std::invalid_argument& e) {
-        throw SceneError(where + ": ice_sheet.bonds: " + e.what());
-      }
-    }
+    next_ += static_cast<BodyId>(descs.size());
+    if (sheet->bonds) add_sheet_bonds(*sheet, where, elements, descs, index);
   }
 
-  // Generated floes, clear of everything above.
-  if (scene.floe_field) {
+  // Generated floes, clear of everything above, added in space order (the World's own, geometry/space_order.h, on
+  // cells of 4 x the floes' mean equivalent radius) with the generator's ids (largest first): neighbours in the ice
+  // are neighbours in the World's arrays, so each thread of the step works on one stretch of the ice in every loop.
+  void add_floe_field(FieldStatistics* field_report) {
+    if (!scene_.floe_field) return;
     std::vector<std::vector<Vec2>> obstacles;
-    obstacles.reserve(bodies.size() + land.size());
-    for (const PlacedBody& p : bodies) obstacles.push_back(p.vertices);
-    obstacles.insert(obstacles.end(), land.begin(), land.end());
-    const FloeField field = generate_floe_field(*scene.floe_field, scene.ice_density, next, obstacles);
-    const std::string where = scene.floe_field->source.where.empty() ? "floe_field" : scene.floe_field->source.where;
-    // Added in space order (the World's own, geometry/space_order.h, on cells of 4 x the floes' mean equivalent
-    // radius) with the generator's ids (largest first): neighbours in the ice are neighbours in the World's
-    // arrays, so each thread of the step works on one stretch of the ice in every loop.
+    obstacles.reserve(bodies_.size() + land_.size());
+    for (const PlacedBody& p : bodies_) obstacles.push_back(p.vertices);
+    obstacles.insert(obstacles.end(), land_.begin(), land_.end());
+    const FloeField field = generate_floe_field(*scene_.floe_field, scene_.ice_density, next_, obstacles);
+    const std::string where = scene_.floe_field->source.where.empty() ? "floe_field" : scene_.floe_field->source.where;
     double radius_sum = 0.0;
     for (const BodyDesc& desc : field.floes) radius_sum += desc.shape->equivalent_radius();
     const double cell =
@@ -382,11 +329,98 @@ dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
     for (std::size_t k = 0; k < field.floes.size(); ++k)
       order.emplace_back(geometry::space_key(field.floes[k].position, cell), k);
     std::sort(order.begin(), order.end());
-    for (const auto& [key, k] : order) add(world, field.floes[k], where);
+    for (const auto& [key, k] : order) add(world_, field.floes[k], where);
     if (field_report)
       *field_report =
-          field_statistics(field.floes, field.region_area, scene.floe_field->size_min, scene.floe_field->size_max);
+          field_statistics(field.floes, field.region_area, scene_.floe_field->size_min, scene_.floe_field->size_max);
   }
+
+  dynamics::World take() { return std::move(world_); }
+
+ private:
+  static dynamics::WorldSettings settings_of(const Scene& scene) {
+    dynamics::WorldSettings settings = scene.world;
+    settings.contact.reference_speed = reference_speed(scene);
+    return settings;
+  }
+
+  // A fixed wall (world-frame vertices), as thick as the thickest floe (its mass never enters the dynamics); a
+  // dynamic body placed before that overlaps it is an error, in `overlap_message(that body)`'s words.
+  template <class Message>
+  void add_wall(const std::vector<Vec2>& vertices, const std::string& source, const Message& overlap_message) {
+    Vec2 centre{0.0, 0.0};
+    auto shape =
+        std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(vertices, &centre));
+    PlacedBody p = placed(source, *shape, centre, 0.0, false);
+    for (const PlacedBody& q : bodies_)
+      if (q.dynamic && overlapping(p, q)) throw SceneError(overlap_message(q));
+    bodies_.push_back(std::move(p));
+    BodyDesc desc;
+    desc.id = next_++;
+    desc.shape = shape;
+    desc.position = centre;
+    desc.thickness = max_thickness_;
+    desc.density = scene_.ice_density;
+    desc.motion = Motion::fixed;
+    add(world_, desc, source);
+  }
+
+  // The bonds between the sheet's elements (descs, World indices `index`) across its faces and at its corners.
+  void add_sheet_bonds(const IceSheetSpec& sheet, const std::string& where, const SheetElementsOut& elements,
+                       const std::vector<BodyDesc>& descs, const std::vector<int>& index) {
+    const auto& b = sheet.bonds;
+    bonds::BondMaterial m;
+    m.youngs_modulus = scene_.world.contact.youngs_modulus;
+    m.poisson_ratio = scene_.world.contact.poisson_ratio;
+    m.tensile_strength = b->tensile_strength;
+    m.shear_strength = b->shear_strength;
+    m.friction_angle = b->friction_angle;
+    m.points_per_face = b->points_per_face;
+    m.damping_ratio = b->damping_ratio;
+    try {
+      bonds::BondSet set(m);
+      for (const SheetFace& f : elements.faces) {
+        const BodyDesc &da = descs[static_cast<std::size_t>(f.a)], &db = descs[static_cast<std::size_t>(f.b)];
+        set.add_face({.a = index[static_cast<std::size_t>(f.a)],
+                      .b = index[static_cast<std::size_t>(f.b)],
+                      .id_a = da.id,
+                      .id_b = db.id,
+                      .p0 = f.p0,
+                      .p1 = f.p1,
+                      .thickness = sheet.thickness,
+                      .centre_a = da.position,
+                      .centre_b = db.position,
+                      .yaw_a = 0.0,
+                      .yaw_b = 0.0});
+      }
+      for (const SheetCorner& c : elements.corners) {
+        if (c.faces.empty()) continue;  // a corner on the region's boundary with no face at it
+        set.add_corner_pair(index[static_cast<std::size_t>(c.a)], index[static_cast<std::size_t>(c.b)], c.faces);
+      }
+      world_.set_bonds(std::move(set));
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(where + ": ice_sheet.bonds: " + e.what());
+    }
+  }
+
+  const Scene& scene_;
+  dynamics::World world_;
+  std::vector<PlacedBody> bodies_;       // placed so far
+  std::vector<std::vector<Vec2>> land_;  // land that is no wall: an obstacle for the floe field only
+  BodyId next_ = 0;                      // the next free id
+  double max_thickness_ = 0.0;           // of the dynamic bodies, for the walls' thickness [m]
+};
+
+}  // namespace
+
+dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
+  WorldBuilder b(scene);
+  b.add_bodies();
+  b.add_channel();
+  b.add_land();
+  b.add_ice_sheet();
+  b.add_floe_field(field_report);
+  dynamics::World world = b.take();
   check_bodies_in_water(world);
   return world;
 }

@@ -9,8 +9,13 @@
 #include <sstream>
 
 #include "geometry/voronoi.h"
+#include "scene/floe_placement.h"
 
 namespace polyfloe::scene {
+
+using detail::PlacedSet;
+using detail::prepare;
+using detail::PreparedPolygon;
 
 namespace {
 
@@ -27,97 +32,6 @@ double circle_area(double size) { return 0.25 * std::numbers::pi * size * size; 
 std::string prefix(const FloeFieldSpec& spec) {
   return spec.source.where.empty() ? std::string() : spec.source.where + ": ";
 }
-
-// A convex polygon prepared for repeated separating-axis tests: unit outward edge normals n_i and offsets
-// d_i = n_i . v_i, so that n_i . x - d_i is the signed distance of x from edge line i.
-struct PreparedPolygon {
-  std::vector<Vec2> v;    // [m]
-  std::vector<Vec2> n;    // [-]
-  std::vector<double> d;  // [m]
-  geometry::Aabb box;     // [m]
-};
-
-PreparedPolygon prepare(std::span<const Vec2> v) {
-  PreparedPolygon p;
-  p.v.assign(v.begin(), v.end());
-  const std::size_t k = v.size();
-  p.n.resize(k);
-  p.d.resize(k);
-  p.box.lo = p.box.hi = v[0];
-  for (std::size_t i = 0; i < k; ++i) {
-    const Vec2 e = v[(i + 1) % k] - v[i];
-    const double len = e.norm();
-    p.n[i] = len > 0.0 ? Vec2(geometry::perp_right(e) / len) : Vec2(0.0, 0.0);
-    p.d[i] = p.n[i].dot(v[i]);
-    p.box.lo = p.box.lo.cwiseMin(v[i]);
-    p.box.hi = p.box.hi.cwiseMax(v[i]);
-  }
-  return p;
-}
-
-// True when some edge normal of `a` has all of `b` at least `gap` beyond the edge line.
-bool separated_along_normals_of(const std::vector<Vec2>& an, const std::vector<double>& ad, const Vec2& a_shift,
-                                const std::vector<Vec2>& bv, const Vec2& b_shift, double gap) {
-  for (std::size_t i = 0; i < an.size(); ++i) {
-    const double d = ad[i] + an[i].dot(a_shift) - an[i].dot(b_shift) + gap;
-    bool all_beyond = true;
-    for (const Vec2& x : bv) {
-      if (an[i].dot(x) < d) {
-        all_beyond = false;
-        break;
-      }
-    }
-    if (all_beyond) return true;
-  }
-  return false;
-}
-
-// `a` (translated by a_shift) and `b` (translated by b_shift) are at least `gap` apart along some edge normal.
-bool separated(const PreparedPolygon& a, const Vec2& a_shift, const PreparedPolygon& b, const Vec2& b_shift,
-               double gap) {
-  return separated_along_normals_of(a.n, a.d, a_shift, b.v, b_shift, gap) ||
-         separated_along_normals_of(b.n, b.d, b_shift, a.v, a_shift, gap);
-}
-
-// Uniform grid over the region; each placed polygon is listed in every cell its box touches.
-class PlacementGrid {
- public:
-  PlacementGrid(const Vec2& lo, const Vec2& hi, double cell) : lo_(lo), cell_(cell) {
-    nx_ = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x()) / cell)));
-    ny_ = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / cell)));
-    cells_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
-  }
-  // Cell index range [x0, x1] x [y0, y1] covered by the box (clamped); false if the box misses the grid.
-  bool range(const geometry::Aabb& b, int& x0, int& y0, int& x1, int& y1) const {
-    x0 = clamp_cell((b.lo.x() - lo_.x()) / cell_, nx_);
-    x1 = clamp_cell((b.hi.x() - lo_.x()) / cell_, nx_);
-    y0 = clamp_cell((b.lo.y() - lo_.y()) / cell_, ny_);
-    y1 = clamp_cell((b.hi.y() - lo_.y()) / cell_, ny_);
-    return b.hi.x() >= lo_.x() && b.hi.y() >= lo_.y() && b.lo.x() <= lo_.x() + nx_ * cell_ &&
-           b.lo.y() <= lo_.y() + ny_ * cell_;
-  }
-  void insert(const geometry::Aabb& b, int item) {
-    int x0, y0, x1, y1;
-    if (!range(b, x0, y0, x1, y1)) return;
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) cells_[index(x, y)].push_back(item);
-  }
-  const std::vector<int>& cell(int x, int y) const { return cells_[index(x, y)]; }
-
- private:
-  static int clamp_cell(double c, int n) {
-    if (!(c > 0.0)) return 0;
-    if (c >= n - 1) return n - 1;
-    return static_cast<int>(c);
-  }
-  std::size_t index(int x, int y) const {
-    return static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(x);
-  }
-  Vec2 lo_;
-  double cell_;
-  int nx_ = 1, ny_ = 1;
-  std::vector<std::vector<int>> cells_;
-};
 
 void check_spec(const FloeFieldSpec& s) {
   auto fail = [&](const std::string& what) { throw SceneError(prefix(s) + "floe_field: " + what); };
@@ -325,6 +239,48 @@ double polygon_separation(std::span<const Vec2> a, std::span<const Vec2> b) {
 
 double placement_clearance(double size) { return std::min(0.01 * size, 0.5); }
 
+namespace {
+
+[[noreturn]] void refuse(const FloeFieldSpec& spec, const std::string& what) {
+  throw SceneError(prefix(spec) + "floe_field: " + what);
+}
+
+// "0.5432 of the target 0.6": where a field stopped, for the messages.
+std::string reached(const FloeField& field, const FloeFieldSpec& spec) {
+  std::ostringstream msg;
+  msg.precision(4);
+  msg << field.ice_area / field.region_area << " of the target " << spec.concentration;
+  return msg.str();
+}
+
+dynamics::BodyDesc floe_desc(const FloeFieldSpec& spec, double density, dynamics::BodyId id,
+                             std::shared_ptr<const geometry::ConvexPolygon> shape, const Vec2& position) {
+  dynamics::BodyDesc desc;
+  desc.id = id;
+  desc.shape = std::move(shape);
+  desc.position = position;
+  desc.yaw = 0.0;  // the random orientation is in the shape itself
+  desc.velocity = spec.velocity;
+  desc.thickness = spec.thickness;
+  desc.density = density;
+  desc.motion = dynamics::Motion::dynamic;
+  return desc;
+}
+
+// The sizes are drawn to make up the target area; a field far from it would be a wrong result, not a field.
+// (The last floe may be left out when what it would add is smaller than one floe of size.min.)
+void check_concentration(const FloeField& field, const FloeFieldSpec& spec) {
+  const double slack = 0.01 * spec.concentration + circle_area(spec.size_min) / field.region_area;
+  if (std::abs(field.concentration - spec.concentration) <= slack) return;
+  std::ostringstream msg;
+  msg.precision(4);
+  msg << "the generated field has concentration " << field.concentration << ", not the target " << spec.concentration
+      << " (" << field.floes.size() << " floes); check floe_field.size and floe_field.region";
+  refuse(spec, msg.str());
+}
+
+}  // namespace
+
 FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamics::BodyId first_id,
                               std::span<const std::vector<Vec2>> obstacles) {
   check_spec(spec);
@@ -338,22 +294,8 @@ FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamic
 
   // Cells of about twice the smallest floe: the many small floes then test a handful of cells each, and the
   // grid stays below ~4 million cells.
-  const double cell = std::max({2.0 * spec.size_min, (hi - lo).maxCoeff() / 2048.0, 1e-9});
-  PlacementGrid grid(lo, hi, cell);
-
-  std::vector<PreparedPolygon> placed;  // obstacles first, then floes
-  std::vector<Vec2> shift;              // world position of each placed polygon's frame [m]
-  placed.reserve(obstacles.size() + sizes.size());
-  for (const std::vector<Vec2>& o : obstacles) {
-    if (o.size() < 3) continue;
-    PreparedPolygon p = prepare(o);
-    if (!p.box.overlaps(geometry::Aabb{lo, hi})) continue;
-    grid.insert(p.box, static_cast<int>(placed.size()));
-    placed.push_back(std::move(p));
-    shift.emplace_back(0.0, 0.0);
-  }
-  std::vector<std::uint32_t> stamp(placed.size() + sizes.size(), 0);
-  std::uint32_t current_stamp = 0;
+  PlacedSet placed(lo, hi, std::max({2.0 * spec.size_min, (hi - lo).maxCoeff() / 2048.0, 1e-9}));
+  placed.add_obstacles(obstacles, sizes.size());
 
   field.floes.reserve(sizes.size());
   std::optional<VoronoiShapes> voronoi;  // its own random stream: ellipse fields stay as they were
@@ -365,101 +307,50 @@ FloeField generate_floe_field(const FloeFieldSpec& spec, double density, dynamic
       FloeFieldSpec::kBaseAttempts + FloeFieldSpec::kAttemptsPerFloe * static_cast<double>(sizes.size());
   for (std::size_t f = 0; f < sizes.size(); ++f) {
     const double size = sizes[f];
-    std::vector<Vec2> raw;
-    if (voronoi) {
-      raw = voronoi->draw(shape_rng, size);
-    } else {
-      const int corners = shape_rng.uniform_int(spec.corners_min, spec.corners_max);
-      raw = random_floe_polygon(shape_rng, corners, size, spec.aspect_max);
-    }
+    const std::vector<Vec2> raw =
+        voronoi ? voronoi->draw(shape_rng, size)
+                : random_floe_polygon(shape_rng, shape_rng.uniform_int(spec.corners_min, spec.corners_max), size,
+                                      spec.aspect_max);
     auto shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::from_vertices(raw));
-    PreparedPolygon body = prepare(shape->vertices());
+    const PreparedPolygon body = prepare(shape->vertices());
     const double gap = placement_clearance(size);  // sizes descend: this floe is the smaller of any pair [m]
 
     // Positions of the centroid that keep the whole polygon inside the region.
     const Vec2 p_lo = lo - body.box.lo, p_hi = hi - body.box.hi;
     if (p_lo.x() > p_hi.x() || p_lo.y() > p_hi.y()) {
       std::ostringstream msg;
-      msg << prefix(spec) << "floe_field: floe " << f + 1 << " (size " << size
+      msg << "floe " << f + 1 << " (size " << size
           << " m) does not fit in the region; lower floe_field.size.max or enlarge floe_field.region";
-      throw SceneError(msg.str());
+      refuse(spec, msg.str());
     }
     bool done = false;
     for (int attempt = 0; attempt < spec.max_attempts && !done; ++attempt) {
       if (static_cast<double>(++field.attempts) > attempt_budget) {
         std::ostringstream msg;
         msg.precision(4);
-        msg << prefix(spec) << "floe_field: placing " << f << " of " << sizes.size() << " floes took more than "
-            << attempt_budget << " random tries in all (the concentration reached is "
-            << field.ice_area / field.region_area << " of the target " << spec.concentration
+        msg << "placing " << f << " of " << sizes.size() << " floes took more than " << attempt_budget
+            << " random tries in all (the concentration reached is " << reached(field, spec)
             << "); lower floe_field.concentration or floe_field.max_attempts";
-        throw SceneError(msg.str());
+        refuse(spec, msg.str());
       }
       const Vec2 p(place_rng.uniform(p_lo.x(), p_hi.x()), place_rng.uniform(p_lo.y(), p_hi.y()));
-      const geometry::Aabb box{body.box.lo + p - Vec2(gap, gap), body.box.hi + p + Vec2(gap, gap)};
-      int x0, y0, x1, y1;
-      grid.range(box, x0, y0, x1, y1);
-      if (++current_stamp == 0) {  // wrapped: clear the marks
-        std::fill(stamp.begin(), stamp.end(), 0);
-        current_stamp = 1;
-      }
-      bool free = true;
-      for (int y = y0; y <= y1 && free; ++y) {
-        for (int x = x0; x <= x1 && free; ++x) {
-          for (int item : grid.cell(x, y)) {
-            if (stamp[static_cast<std::size_t>(item)] == current_stamp) continue;
-            stamp[static_cast<std::size_t>(item)] = current_stamp;
-            const PreparedPolygon& other = placed[static_cast<std::size_t>(item)];
-            const Vec2& other_shift = shift[static_cast<std::size_t>(item)];
-            const geometry::Aabb other_box{other.box.lo + other_shift, other.box.hi + other_shift};
-            if (!box.overlaps(other_box)) continue;
-            if (!separated(body, p, other, other_shift, gap)) {
-              free = false;
-              break;
-            }
-          }
-        }
-      }
-      if (!free) continue;
-
-      grid.insert(geometry::Aabb{body.box.lo + p, body.box.hi + p}, static_cast<int>(placed.size()));
-      placed.push_back(body);
-      shift.push_back(p);
-      dynamics::BodyDesc desc;
-      desc.id = first_id + f;
-      desc.shape = shape;
-      desc.position = p;
-      desc.yaw = 0.0;  // the random orientation is in the shape itself
-      desc.velocity = spec.velocity;
-      desc.thickness = spec.thickness;
-      desc.density = density;
-      desc.motion = dynamics::Motion::dynamic;
-      field.floes.push_back(std::move(desc));
+      if (!placed.clear(body, p, gap)) continue;
+      placed.add(body, p);
+      field.floes.push_back(floe_desc(spec, density, first_id + f, shape, p));
       field.ice_area += shape->area();
       done = true;
     }
     if (!done) {
       std::ostringstream msg;
       msg.precision(4);
-      msg << prefix(spec) << "floe_field: could not place floe " << f + 1 << " of " << sizes.size() << " (size " << size
-          << " m) after " << spec.max_attempts << " attempts; the concentration reached is "
-          << field.ice_area / field.region_area << " of the target " << spec.concentration
+      msg << "could not place floe " << f + 1 << " of " << sizes.size() << " (size " << size << " m) after "
+          << spec.max_attempts << " attempts; the concentration reached is " << reached(field, spec)
           << "; lower floe_field.concentration (or widen floe_field.size)";
-      throw SceneError(msg.str());
+      refuse(spec, msg.str());
     }
   }
   field.concentration = field.ice_area / field.region_area;
-  // The sizes are drawn to make up the target area; a field far from it would be a wrong result, not a field.
-  // (The last floe may be left out when what it would add is smaller than one floe of size.min.)
-  const double slack = 0.01 * spec.concentration + circle_area(spec.size_min) / field.region_area;
-  if (!(std::abs(field.concentration - spec.concentration) <= slack)) {
-    std::ostringstream msg;
-    msg.precision(4);
-    msg << prefix(spec) << "floe_field: the generated field has concentration " << field.concentration
-        << ", not the target " << spec.concentration << " (" << field.floes.size()
-        << " floes); check floe_field.size and floe_field.region";
-    throw SceneError(msg.str());
-  }
+  check_concentration(field, spec);
   return field;
 }
 
