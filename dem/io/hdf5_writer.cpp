@@ -84,7 +84,25 @@ struct Hdf5Writer::Impl {
     auto& root = file.root();
     write_run_attributes(root, info);
     root.set_attribute("water_density", water_density);
+    write_floes(root, world, water_density);
+    create_state_series(root);
+    create_boundary_series(world);
+    if (const bonds::BondSet* b = world.bonds()) create_bond_series(root, *b);
+    create_extra_series(extra_series);
+    file.flush();
+  }
 
+  // A series (one row per frame) with its units and description.
+  static Dataset series(hdf5::Group& g, const char* name, DType type, const Dims& row, std::uint64_t chunk,
+                        const char* u, const char* description = nullptr) {
+    Dataset s = g.create_series(name, type, row, chunk);
+    units(s, u, description);
+    return s;
+  }
+
+  // floes/: what does not change (ids, thickness, mass, inertia, motion, the body-frame polygons, the XDMF
+  // topology), and the per-body data the frames need.
+  void write_floes(hdf5::Group& root, const dynamics::World& world, double water_density) {
     const auto n = static_cast<int>(bodies);
     ids.resize(bodies);
     centre_z.resize(bodies);
@@ -136,35 +154,38 @@ struct Hdf5Writer::Impl {
     d = floes.write_dataset<std::int64_t>("xdmf_topology", topology);
     units(d, "1", "the polygons for results.xmf: per body 3 (XDMF polygon), its vertex count, its vertex rows");
     body_xy = std::move(xy);
+  }
 
-    auto root_series = [&](hdf5::Group& g, const char* name, DType type, const Dims& row, std::uint64_t chunk,
-                           const char* u, const char* description = nullptr) {
-      Dataset s = g.create_series(name, type, row, chunk);
-      units(s, u, description);
-      return s;
-    };
-    time = root_series(root, "time", DType::f64, {}, kSeriesChunk, "s");
+  // time, state/ and diagnostics/ series.
+  void create_state_series(hdf5::Group& root) {
+    time = series(root, "time", DType::f64, {}, kSeriesChunk, "s");
     auto state = root.create_group("state");
-    position = root_series(state, "position", DType::f64, {bodies, 3}, 1, "m",
-                           "centre of mass (x, y, z); z = thickness/2 - draft");
-    orientation = root_series(state, "orientation", DType::f64, {bodies, 4}, 1, "1",
-                              "unit quaternion (w, x, y, z) of the body frame");
-    velocity = root_series(state, "velocity", DType::f64, {bodies, 3}, 1, "m/s");
-    angular_velocity = root_series(state, "angular_velocity", DType::f64, {bodies, 3}, 1, "rad/s");
-    vertices_xy = root_series(state, "vertices_xy", DType::f32, {body_xy.size() / 2, 2}, 1, "m",
-                              "every body's polygon where it is (rows as floes/polygon_xy), single precision: for "
-                              "viewing (results.xmf)");
+    position =
+        series(state, "position", DType::f64, {bodies, 3}, 1, "m", "centre of mass (x, y, z); z = thickness/2 - draft");
+    orientation =
+        series(state, "orientation", DType::f64, {bodies, 4}, 1, "1", "unit quaternion (w, x, y, z) of the body frame");
+    velocity = series(state, "velocity", DType::f64, {bodies, 3}, 1, "m/s");
+    angular_velocity = series(state, "angular_velocity", DType::f64, {bodies, 3}, 1, "rad/s");
+    vertices_xy = series(state, "vertices_xy", DType::f32, {body_xy.size() / 2, 2}, 1, "m",
+                         "every body's polygon where it is (rows as floes/polygon_xy), single precision: for "
+                         "viewing (results.xmf)");
     diagnostics = root.create_group("diagnostics");
     auto& diag = diagnostics;
-    kinetic_energy = root_series(diag, "kinetic_energy", DType::f64, {}, kSeriesChunk, "J",
-                                 "dynamic bodies, translation + rotation");
-    contact_count = root_series(diag, "contact_count", DType::i64, {}, kSeriesChunk, "1");
-    max_speed = root_series(diag, "max_speed", DType::f64, {}, kSeriesChunk, "m/s", "over dynamic bodies");
-    mean_speed = root_series(diag, "mean_speed", DType::f64, {}, kSeriesChunk, "m/s", "over dynamic bodies");
-    max_overlap_depth = root_series(diag, "max_overlap_depth", DType::f64, {}, kSeriesChunk, "m");
-    linear_momentum = root_series(diag, "linear_momentum", DType::f64, {2}, kSeriesChunk, "kg m/s", "dynamic bodies");
-    angular_momentum = root_series(diag, "angular_momentum", DType::f64, {}, kSeriesChunk, "kg m^2/s",
-                                   "dynamic bodies, about the origin");
+    kinetic_energy =
+        series(diag, "kinetic_energy", DType::f64, {}, kSeriesChunk, "J", "dynamic bodies, translation + rotation");
+    contact_count = series(diag, "contact_count", DType::i64, {}, kSeriesChunk, "1");
+    max_speed = series(diag, "max_speed", DType::f64, {}, kSeriesChunk, "m/s", "over dynamic bodies");
+    mean_speed = series(diag, "mean_speed", DType::f64, {}, kSeriesChunk, "m/s", "over dynamic bodies");
+    max_overlap_depth = series(diag, "max_overlap_depth", DType::f64, {}, kSeriesChunk, "m");
+    linear_momentum = series(diag, "linear_momentum", DType::f64, {2}, kSeriesChunk, "kg m/s", "dynamic bodies");
+    angular_momentum =
+        series(diag, "angular_momentum", DType::f64, {}, kSeriesChunk, "kg m^2/s", "dynamic bodies, about the origin");
+  }
+
+  // The force on each fixed or kinematic body (walls, plates), where there are any.
+  void create_boundary_series(const dynamics::World& world) {
+    const auto n = static_cast<int>(bodies);
+    auto& diag = diagnostics;
     for (int i = 0; i < n; ++i)
       if (world.motion(i) != dynamics::Motion::dynamic) boundary.push_back(i);
     if (!boundary.empty()) {
@@ -172,61 +193,66 @@ struct Hdf5Writer::Impl {
       for (int i : boundary) bids.push_back(world.id(i));
       units(diag.write_dataset<std::uint64_t>("boundary_ids", bids), "1",
             "ids of the fixed and kinematic bodies (walls, plates), in the order of boundary_force");
-      boundary_force = root_series(diag, "boundary_force", DType::f64, {boundary.size(), 2}, kSeriesChunk, "N",
-                                   "force of the ice (contacts, bonds) on each fixed or kinematic body");
+      boundary_force = series(diag, "boundary_force", DType::f64, {boundary.size(), 2}, kSeriesChunk, "N",
+                              "force of the ice (contacts, bonds) on each fixed or kinematic body");
     }
-    if (const bonds::BondSet* b = world.bonds()) {
-      auto g = root.create_group("bonds");
-      const bonds::BondMaterial& m = b->material();
-      g.set_attribute("points_per_face", static_cast<std::int64_t>(m.points_per_face));
-      g.set_attribute("tensile_strength", m.tensile_strength);
-      g.set_attribute("shear_strength", m.shear_strength);
-      g.set_attribute("friction_angle", m.friction_angle);
-      g.set_attribute("damping_ratio", m.damping_ratio);
-      g.set_attribute("youngs_modulus", m.youngs_modulus);
-      g.set_attribute("poisson_ratio", m.poisson_ratio);
-      const std::size_t nf = b->faces();
-      std::vector<std::uint64_t> ia(nf), ib(nf);
-      std::vector<double> len(nf), normal(2 * nf), mid(2 * nf);
-      for (std::size_t f = 0; f < nf; ++f) {
-        ia[f] = b->face_id_a(f);
-        ib[f] = b->face_id_b(f);
-        len[f] = b->face_length(f);
-        normal[2 * f] = b->face_normal0(f).x();
-        normal[2 * f + 1] = b->face_normal0(f).y();
-        mid[2 * f] = b->face_midpoint0(f).x();
-        mid[2 * f + 1] = b->face_midpoint0(f).y();
-      }
-      units(g.write_dataset<std::uint64_t>("face_id_a", ia), "1", "body id of each face's first element");
-      units(g.write_dataset<std::uint64_t>("face_id_b", ib), "1", "body id of each face's second element");
-      units(g.write_dataset<double>("face_length", len), "m");
-      units(g.write_dataset<double>("face_normal", normal, Dims{nf, 2}), "1",
-            "unit normal from element a to b when frozen");
-      units(g.write_dataset<double>("face_midpoint", mid, Dims{nf, 2}), "m", "midpoint of the face when frozen");
-      intact_faces = root_series(g, "intact_faces", DType::i64, {}, kSeriesChunk, "1");
-      intact_points = root_series(g, "intact_points", DType::i64, {}, kSeriesChunk, "1");
-      max_tension = root_series(g, "max_tensile_stress", DType::f64, {}, kSeriesChunk, "Pa",
-                                "largest normal (tensile) stress over intact bond points");
-      max_shear = root_series(g, "max_shear_stress", DType::f64, {}, kSeriesChunk, "Pa",
-                              "largest |shear stress| over intact bond points");
-      face_intact = g.create_series("face_intact", DType::u8, {nf}, 1, 1);
-      units(face_intact, "1", "[frame, face] 1 while the face holds");
-      point_intact = g.create_series("point_intact", DType::u8, {b->points()}, 1, 1);
-      units(point_intact, "1",
-            "[frame, point] 1 while the bond point holds; face f has points_per_face points from "
-            "f x points_per_face");
+  }
+
+  // bonds/: the material, the faces as frozen, and the series of what holds.
+  void create_bond_series(hdf5::Group& root, const bonds::BondSet& b) {
+    auto g = root.create_group("bonds");
+    const bonds::BondMaterial& m = b.material();
+    g.set_attribute("points_per_face", static_cast<std::int64_t>(m.points_per_face));
+    g.set_attribute("tensile_strength", m.tensile_strength);
+    g.set_attribute("shear_strength", m.shear_strength);
+    g.set_attribute("friction_angle", m.friction_angle);
+    g.set_attribute("damping_ratio", m.damping_ratio);
+    g.set_attribute("youngs_modulus", m.youngs_modulus);
+    g.set_attribute("poisson_ratio", m.poisson_ratio);
+    const std::size_t nf = b.faces();
+    std::vector<std::uint64_t> ia(nf), ib(nf);
+    std::vector<double> len(nf), normal(2 * nf), mid(2 * nf);
+    for (std::size_t f = 0; f < nf; ++f) {
+      ia[f] = b.face_id_a(f);
+      ib[f] = b.face_id_b(f);
+      len[f] = b.face_length(f);
+      normal[2 * f] = b.face_normal0(f).x();
+      normal[2 * f + 1] = b.face_normal0(f).y();
+      mid[2 * f] = b.face_midpoint0(f).x();
+      mid[2 * f + 1] = b.face_midpoint0(f).y();
     }
+    units(g.write_dataset<std::uint64_t>("face_id_a", ia), "1", "body id of each face's first element");
+    units(g.write_dataset<std::uint64_t>("face_id_b", ib), "1", "body id of each face's second element");
+    units(g.write_dataset<double>("face_length", len), "m");
+    units(g.write_dataset<double>("face_normal", normal, Dims{nf, 2}), "1",
+          "unit normal from element a to b when frozen");
+    units(g.write_dataset<double>("face_midpoint", mid, Dims{nf, 2}), "m", "midpoint of the face when frozen");
+    intact_faces = series(g, "intact_faces", DType::i64, {}, kSeriesChunk, "1");
+    intact_points = series(g, "intact_points", DType::i64, {}, kSeriesChunk, "1");
+    max_tension = series(g, "max_tensile_stress", DType::f64, {}, kSeriesChunk, "Pa",
+                         "largest normal (tensile) stress over intact bond points");
+    max_shear = series(g, "max_shear_stress", DType::f64, {}, kSeriesChunk, "Pa",
+                       "largest |shear stress| over intact bond points");
+    face_intact = g.create_series("face_intact", DType::u8, {nf}, 1, 1);
+    units(face_intact, "1", "[frame, face] 1 while the face holds");
+    point_intact = g.create_series("point_intact", DType::u8, {b.points()}, 1, 1);
+    units(point_intact, "1",
+          "[frame, point] 1 while the bond point holds; face f has points_per_face points from "
+          "f x points_per_face");
+  }
+
+  // The driver's own series (the channel monitor's), in diagnostics/<group>/.
+  void create_extra_series(const std::vector<ExtraSeries>& extra_series) {
     std::vector<std::pair<std::string, hdf5::Group>> groups;
     for (const ExtraSeries& e : extra_series) {
       auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == e.group; });
       if (it == groups.end()) {
-        groups.emplace_back(e.group, diag.create_group(e.group));
+        groups.emplace_back(e.group, diagnostics.create_group(e.group));
         it = groups.end() - 1;
       }
-      extra.push_back(root_series(it->second, e.name.c_str(), DType::f64, {}, kSeriesChunk, e.units.c_str(),
-                                  e.description.c_str()));
+      extra.push_back(
+          series(it->second, e.name.c_str(), DType::f64, {}, kSeriesChunk, e.units.c_str(), e.description.c_str()));
     }
-    file.flush();
   }
 
   bool swmr = false;
@@ -239,6 +265,18 @@ struct Hdf5Writer::Impl {
 
   void write_frame(const dynamics::World& world, std::span<const double> extra_values) {
     start_swmr();  // every object exists by the first frame (the driver's series too)
+    check_frame(world, extra_values);
+    const double t = world.time();
+    time.append_rows<double>({&t, 1}, 1);
+    append_state(world);
+    append_diagnostics(world, extra_values);
+    if (const bonds::BondSet* b = world.bonds()) append_bonds(*b);
+    ++frames;
+    file.flush();
+  }
+
+  // The world is the one the file was started with (bodies, ids), and the driver gives a value per extra series.
+  void check_frame(const dynamics::World& world, std::span<const double> extra_values) const {
     if (extra_values.size() != extra.size())
       throw IoError(file.path().string() + ": " + std::to_string(extra_values.size()) + " extra values for " +
                     std::to_string(extra.size()) + " extra series");
@@ -253,14 +291,14 @@ struct Hdf5Writer::Impl {
                       ", the file was started with " + std::to_string(ids[static_cast<std::size_t>(i)]));
       }
     }
+  }
+
+  // state/: positions, orientations, velocities and the polygons where they are.
+  void append_state(const dynamics::World& world) {
     const auto pos = world.positions();
     const auto yaw = world.yaws();
     const auto vel = world.velocities();
     const auto omega = world.angular_velocities();
-
-    const double t = world.time();
-    time.append_rows<double>({&t, 1}, 1);
-
     row3.assign(3 * bodies, 0.0);
     for (std::size_t k = 0; k < bodies; ++k) {
       row3[3 * k] = pos[k].x();
@@ -296,7 +334,12 @@ struct Hdf5Writer::Impl {
       }
     }
     vertices_xy.append_rows<float>(row_xy, 1);
+  }
 
+  // diagnostics/: speeds, deepest overlap, contacts, energy, momenta, the driver's series, the boundary forces.
+  void append_diagnostics(const dynamics::World& world, std::span<const double> extra_values) {
+    const auto n = static_cast<int>(bodies);
+    const auto vel = world.velocities();
     double speed_max = 0.0, speed_sum = 0.0;
     std::size_t dynamic = 0;
     for (int i = 0; i < n; ++i) {
@@ -331,23 +374,23 @@ struct Hdf5Writer::Impl {
       }
       boundary_force.append_rows<double>(row3, 1);
     }
-    if (const bonds::BondSet* b = world.bonds()) {
-      const auto nfaces = static_cast<std::int64_t>(b->intact_faces());
-      const auto npoints = static_cast<std::int64_t>(b->intact_points());
-      intact_faces.append_rows<std::int64_t>({&nfaces, 1}, 1);
-      intact_points.append_rows<std::int64_t>({&npoints, 1}, 1);
-      const double st = b->max_sigma(), ss = b->max_tau();
-      max_tension.append_rows<double>({&st, 1}, 1);
-      max_shear.append_rows<double>({&ss, 1}, 1);
-      flags.resize(b->faces());
-      for (std::size_t f = 0; f < b->faces(); ++f) flags[f] = b->face_intact(f) ? 1 : 0;
-      face_intact.append_rows<std::uint8_t>(flags, 1);
-      flags.resize(b->points());
-      for (std::size_t q = 0; q < b->points(); ++q) flags[q] = b->point_intact(q) ? 1 : 0;
-      point_intact.append_rows<std::uint8_t>(flags, 1);
-    }
-    ++frames;
-    file.flush();
+  }
+
+  // bonds/: what holds.
+  void append_bonds(const bonds::BondSet& b) {
+    const auto nfaces = static_cast<std::int64_t>(b.intact_faces());
+    const auto npoints = static_cast<std::int64_t>(b.intact_points());
+    intact_faces.append_rows<std::int64_t>({&nfaces, 1}, 1);
+    intact_points.append_rows<std::int64_t>({&npoints, 1}, 1);
+    const double st = b.max_sigma(), ss = b.max_tau();
+    max_tension.append_rows<double>({&st, 1}, 1);
+    max_shear.append_rows<double>({&ss, 1}, 1);
+    flags.resize(b.faces());
+    for (std::size_t f = 0; f < b.faces(); ++f) flags[f] = b.face_intact(f) ? 1 : 0;
+    face_intact.append_rows<std::uint8_t>(flags, 1);
+    flags.resize(b.points());
+    for (std::size_t q = 0; q < b.points(); ++q) flags[q] = b.point_intact(q) ? 1 : 0;
+    point_intact.append_rows<std::uint8_t>(flags, 1);
   }
 };
 

@@ -54,6 +54,67 @@ double top_of(const dynamics::World& world, int i, double water_density) {
   return world.thickness(i) - draft_of(world, i, water_density);
 }
 
+// The mean normal and |shear| stress over each element's intact bond points, on all its cells (a body of n
+// vertices has n + 2 cells, in body order: floes_polydata).
+void add_bond_stress(vtkPolyData& data, const dynamics::World& world, const bonds::BondSet& b, vtkIdType n_cells) {
+  const int bodies = static_cast<int>(world.size());
+  std::vector<double> sigma(static_cast<std::size_t>(bodies), 0.0), tau(sigma.size(), 0.0), count(sigma.size(), 0.0);
+  const auto per = static_cast<std::size_t>(b.material().points_per_face);
+  for (std::size_t f = 0; f < b.faces(); ++f) {
+    for (std::size_t p = b.face_first_point(f); p < b.face_first_point(f) + per; ++p) {
+      if (!b.point_intact(p)) continue;
+      for (int e : {b.face_a(f), b.face_b(f)}) {
+        sigma[static_cast<std::size_t>(e)] += b.point_sigma(p);
+        tau[static_cast<std::size_t>(e)] += std::abs(b.point_tau(p));
+        count[static_cast<std::size_t>(e)] += 1.0;
+      }
+    }
+  }
+  auto normal = make_array<vtkDoubleArray>("bond_normal_stress", 1, n_cells);
+  auto shear = make_array<vtkDoubleArray>("bond_shear_stress", 1, n_cells);
+  vtkIdType c = 0;
+  for (int i = 0; i < bodies; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double sn = count[k] > 0 ? sigma[k] / count[k] : 0.0, st = count[k] > 0 ? tau[k] / count[k] : 0.0;
+    for (std::size_t j = 0; j < world.world_vertices(i).size() + 2; ++j, ++c) {
+      normal->SetValue(c, sn);
+      shear->SetValue(c, st);
+    }
+  }
+  data.GetCellData()->AddArray(normal);
+  data.GetCellData()->AddArray(shear);
+}
+
+// One prism into the arrays of floes_polydata: its 2n points from p0 (the bottom ring at z = bottom, then the top
+// ring at z = top) into xyz, its n + 2 cells (the top, the bottom reversed to face down, one quad per side facing
+// out) from `cell`, their connectivity from k; cell and k are advanced.
+void add_prism(std::span<const Vec2> ring, double bottom, double top, vtkIdType p0, double* xyz, vtkIdTypeArray& conn,
+               vtkIdTypeArray& offsets, vtkIdType& cell, vtkIdType& k) {
+  const auto n = static_cast<vtkIdType>(ring.size());
+  for (vtkIdType j = 0; j < n; ++j) {
+    const auto& v = ring[static_cast<std::size_t>(j)];
+    double* b = xyz + 3 * (p0 + j);
+    double* t = xyz + 3 * (p0 + n + j);
+    b[0] = t[0] = v.x();
+    b[1] = t[1] = v.y();
+    b[2] = bottom;
+    t[2] = top;
+  }
+  auto close_cell = [&] { offsets.SetValue(++cell, k); };
+  for (vtkIdType j = 0; j < n; ++j) conn.SetValue(k++, p0 + n + j);  // top, counter-clockwise from above
+  close_cell();
+  for (vtkIdType j = n - 1; j >= 0; --j) conn.SetValue(k++, p0 + j);  // bottom, reversed: faces down
+  close_cell();
+  for (vtkIdType j = 0; j < n; ++j) {  // side j: edge j -> j+1, outward to the right of the edge
+    const vtkIdType j1 = (j + 1) % n;
+    conn.SetValue(k++, p0 + j);
+    conn.SetValue(k++, p0 + j1);
+    conn.SetValue(k++, p0 + n + j1);
+    conn.SetValue(k++, p0 + n + j);
+    close_cell();
+  }
+}
+
 // Every body as a prism floating at its equilibrium draft: points are the bottom ring then the top ring of each
 // body; cells are the top polygon, the bottom polygon (reversed) and one quad per edge, all facing outward.
 vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double water_density) {
@@ -84,34 +145,13 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
   double* xyz = coords->GetPointer(0);
   vtkIdType p0 = 0, cell = 0, k = 0;
   offsets->SetValue(0, 0);
-  auto close_cell = [&] { offsets->SetValue(++cell, k); };
   for (int i = 0; i < bodies; ++i) {
     const auto ring = world.world_vertices(i);
     const auto n = static_cast<vtkIdType>(ring.size());
     const double h = world.thickness(i);  // [m]
     const double draft = draft_of(world, i, water_density);
-    for (vtkIdType j = 0; j < n; ++j) {
-      const auto& v = ring[static_cast<std::size_t>(j)];
-      double* bottom = xyz + 3 * (p0 + j);
-      double* top = xyz + 3 * (p0 + n + j);
-      bottom[0] = top[0] = v.x();
-      bottom[1] = top[1] = v.y();
-      bottom[2] = -draft;
-      top[2] = h - draft;
-    }
     const vtkIdType c0 = cell;
-    for (vtkIdType j = 0; j < n; ++j) conn->SetValue(k++, p0 + n + j);  // top, counter-clockwise from above
-    close_cell();
-    for (vtkIdType j = n - 1; j >= 0; --j) conn->SetValue(k++, p0 + j);  // bottom, reversed: faces down
-    close_cell();
-    for (vtkIdType j = 0; j < n; ++j) {  // side j: edge j -> j+1, outward to the right of the edge
-      const vtkIdType j1 = (j + 1) % n;
-      conn->SetValue(k++, p0 + j);
-      conn->SetValue(k++, p0 + j1);
-      conn->SetValue(k++, p0 + n + j1);
-      conn->SetValue(k++, p0 + n + j);
-      close_cell();
-    }
+    add_prism(ring, -draft, h - draft, p0, xyz, *conn, *offsets, cell, k);
     p0 += 2 * n;
 
     const auto& u = vel[static_cast<std::size_t>(i)];
@@ -140,34 +180,7 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
         static_cast<vtkDataArray*>(omega), static_cast<vtkDataArray*>(thickness), static_cast<vtkDataArray*>(motion)}) {
     data->GetCellData()->AddArray(a);
   }
-  if (const bonds::BondSet* b = world.bonds()) {
-    // Mean normal and |shear| stress over each element's intact bond points, on all its cells.
-    std::vector<double> sigma(static_cast<std::size_t>(bodies), 0.0), tau(sigma.size(), 0.0), count(sigma.size(), 0.0);
-    const auto per = static_cast<std::size_t>(b->material().points_per_face);
-    for (std::size_t f = 0; f < b->faces(); ++f) {
-      for (std::size_t p = b->face_first_point(f); p < b->face_first_point(f) + per; ++p) {
-        if (!b->point_intact(p)) continue;
-        for (int e : {b->face_a(f), b->face_b(f)}) {
-          sigma[static_cast<std::size_t>(e)] += b->point_sigma(p);
-          tau[static_cast<std::size_t>(e)] += std::abs(b->point_tau(p));
-          count[static_cast<std::size_t>(e)] += 1.0;
-        }
-      }
-    }
-    auto normal = make_array<vtkDoubleArray>("bond_normal_stress", 1, n_cells);
-    auto shear = make_array<vtkDoubleArray>("bond_shear_stress", 1, n_cells);
-    vtkIdType c = 0;
-    for (int i = 0; i < bodies; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      const double sn = count[k] > 0 ? sigma[k] / count[k] : 0.0, st = count[k] > 0 ? tau[k] / count[k] : 0.0;
-      for (std::size_t j = 0; j < world.world_vertices(i).size() + 2; ++j, ++c) {
-        normal->SetValue(c, sn);
-        shear->SetValue(c, st);
-      }
-    }
-    data->GetCellData()->AddArray(normal);
-    data->GetCellData()->AddArray(shear);
-  }
+  if (const bonds::BondSet* b = world.bonds()) add_bond_stress(*data, world, *b, n_cells);
   data->GetCellData()->SetActiveScalars("speed");
   add_time(data, world);
   return data;
