@@ -156,9 +156,9 @@ const std::vector<ContactRecord>& World::contacts() const {
 }
 
 // The narrow phase of the pair of slots (a, b), ordered by id, with its neighbour-list entry (or -1): whether they
-// touch, and how (g; the foundation model's normal is the direction of its force on b).
+// touch, and how (g; the foundation model's normal is the direction of its force on b, `load` its |g.load|).
 [[gnu::always_inline]] inline bool World::measure_pair(const PairStage& stage, int a, int b, int entry,
-                                                       contact::PlanarContact& g, PairResult& r) {
+                                                       contact::PlanarContact& g, double& load, PairResult& r) {
   const SlotStatic& A = slot_static_[a];
   const SlotStatic& B = slot_static_[b];
   const std::span<const Vec2> verts_a{world_xy_.data() + A.vert_begin, static_cast<std::size_t>(A.vert_count)};
@@ -185,7 +185,7 @@ const std::vector<ContactRecord>& World::contacts() const {
   }
   // No force of the foundation model (one body centred inside the other, by symmetry): no contact.
   if (stage.foundation) {
-    const double load = g.load.norm();
+    load = g.load.norm();
     if (!(load > 0.0) || !(g.energy > 0.0)) return false;
     g.normal = g.load / load;
   }
@@ -195,7 +195,8 @@ const std::vector<ContactRecord>& World::contacts() const {
 // How the force model turns the contact g between the slots a and b into a direction on b, its moment and the
 // approach rate (and, for the foundation model, its elastic force, stiffness and exponent).
 [[gnu::always_inline]] inline World::PairDirection World::pair_direction(const PairStage& stage,
-                                                                         const contact::PlanarContact& g, int a, int b,
+                                                                         const contact::PlanarContact& g, double load,
+                                                                         int a, int b,
                                                                          contact::PairCoefficients& k) const {
   const SlotState& sa = slot_state_[a];
   const SlotState& sb = slot_state_[b];
@@ -219,7 +220,6 @@ const std::vector<ContactRecord>& World::contacts() const {
     // direction and moment. The approach rate along it: dW/dt = -F_e rate. Locally the contact follows a power
     // law W ∝ approach^n, n = F_e extent / W (2 for a flat face, 2.5 round, 3 a corner in a face; exact for
     // those), and its stiffness is K = (n - 1) / n F_e^2 / W; the damping and the tangential spring follow them.
-    const double load = g.load.norm();
     d.elastic = stage.kappa * load;
     d.exponent = std::clamp(load * g.extent / g.energy, 2.0, 3.5);
     d.stiffness = (d.exponent - 1.0) / d.exponent * d.elastic * d.elastic / (stage.kappa * g.energy);
@@ -254,11 +254,12 @@ const std::vector<ContactRecord>& World::contacts() const {
   const SlotStatic& B = slot_static_[b];
   if (bonds_ && bonds_->bonded(A.body, B.body)) return;  // frozen together: the bond carries the load
   contact::PlanarContact g;
-  if (!measure_pair(stage, a, b, entry, g, r)) return;
+  double load = 0.0;  // |g.load| (foundation)
+  if (!measure_pair(stage, a, b, entry, g, load, r)) return;
   // (symmetric in the two bodies, bit for bit: the list's order of the pair does not matter)
   contact::PairCoefficients k =
       entry >= 0 ? lists_.coefficients(entry) : law_.coefficients(A.radius, B.radius, A.mass, B.mass);
-  const PairDirection d = pair_direction(stage, g, a, b, k);
+  const PairDirection d = pair_direction(stage, g, load, a, b, k);
 
   // What the previous step stored for this pair, and whether it did (the pair touched then).
   bool continuing = false;

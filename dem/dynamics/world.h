@@ -396,8 +396,9 @@ class World {
     Vec2 rb{0.0, 0.0};                                      // the contact point relative to b's centre [m]
     Vec2 a_from_b{0.0, 0.0};                                // a's centre relative to b's, through the contact point [m]
   };
-  bool measure_pair(const PairStage& stage, int a, int b, int entry, contact::PlanarContact& g, PairResult& r);
-  PairDirection pair_direction(const PairStage& stage, const contact::PlanarContact& g, int a, int b,
+  bool measure_pair(const PairStage& stage, int a, int b, int entry, contact::PlanarContact& g, double& load,
+                    PairResult& r);
+  PairDirection pair_direction(const PairStage& stage, const contact::PlanarContact& g, double load, int a, int b,
                                contact::PairCoefficients& k) const;
   void evaluate_pair(const PairStage& stage, std::size_t p, PairResult& r);
   std::vector<PairResult> pair_results_;
