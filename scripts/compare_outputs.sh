@@ -43,7 +43,7 @@ POLYFLOE_BUILD_DIR=$new_build POLYFLOE_BUILD_TARGETS=polyfloe bash scripts/build
 # name | scene | overrides (each scene cut to a few seconds of wall time, with frames on the way)
 cases=(
   "two_floes|dem/scenes/two_floes.yaml|"
-  "cube_plate|dem/scenes/cube_plate.yaml|"
+  "cube_plate|dem/scenes/cube_plate.yaml|output.checkpoint.every=0"
   "uniaxial_compression|dem/scenes/uniaxial_compression.yaml|run.duration=0.5 output.interval=0.1"
   "pack_ice_sheet|dem/scenes/pack_ice_sheet.yaml|run.duration=6 output.interval=2"
   "drift_vortex|dem/scenes/drift_vortex.yaml|run.duration=30 output.interval=10"

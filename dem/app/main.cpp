@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cerrno>
 #include <cstdlib>
@@ -17,6 +18,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "dynamics/parallel.h"
@@ -24,7 +26,7 @@
 #include "geometry/polygon.h"
 #include "run/output_folder.h"
 #include "run/simulation.h"
-#include "run/spatial_run.h"
+#include "run/guard.h"
 #include "scene/field_statistics.h"
 #include "scene/scene_reader.h"
 
@@ -193,58 +195,120 @@ int guarded_run(F&& body) {
   }
 }
 
-// A spatial scene (spatial: block): 6-DOF polyhedra, its own driver, no checkpoints.
-int run_spatial_scene(const Args& args, const scene::Scene& sc) {
-  std::optional<dynamics::SpatialWorld> world;
-  double dt = 0.0;
-  try {
-    if (!args.restart.empty())
-      throw scene::SceneError(args.scene + ": spatial scenes write no checkpoints, so --restart does not apply");
-    world.emplace(scene::build_spatial_world(sc));
-    dt = scene::time_step(sc, *world);
-  } catch (const scene::SceneError& e) {
-    std::cerr << "polyfloe: error: " << e.what() << "\n";
-    return run::kExitBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
-    return run::kExitBadInput;
-  }
-  if (args.command == "check") {
-    std::cout << scene::resolved_yaml(sc);
-    const double v = scene::reference_speed(sc);
-    std::cout << "\n# resolved:\n"
-              << "#   spatial bodies: " << world->size() << "\n"
-              << "#   reference impact speed: " << v << " m/s\n"
-              << "#   shortest contact duration at that speed: " << world->shortest_contact_duration(v) << " s\n"
-              << "#   time step: " << dt << " s" << (sc.time.dt ? " (fixed by the scene)" : " (automatic)") << "\n"
-              << "#   steps: " << static_cast<long long>(std::ceil(sc.time.duration / dt)) << "\n";
-    return run::kExitOk;
-  }
-  run::RunOptions opt;
-  opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
-  opt.version = POLYFLOE_VERSION;
-  try {
-    opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
-    run::OutputFolder::check(opt.output_dir);
-  } catch (const run::OutputFolderError& e) {
-    std::cerr << "polyfloe: error: " << e.what() << "\n";
-    return run::kExitBadInput;
-  }
-  return guarded_run([&] {
-    std::cerr << "polyfloe: " << sc.name << ": " << world->size() << " spatial bodies, " << sc.time.duration
-              << " s simulated, dt = " << dt << " s, 1 thread -> " << opt.output_dir.string() << "\n";
-    const run::RunSummary s = run::run_spatial(sc, *world, opt);
+// `polyfloe check` of a spatial scene (spatial: block): 6-DOF polyhedra.
+int check(const scene::Scene& sc, const dynamics::SpatialWorld& world) {
+  const double dt = scene::time_step(sc, world);
+  std::cout << scene::resolved_yaml(sc);
+  const double v = scene::reference_speed(sc);
+  std::cout << "\n# resolved:\n"
+            << "#   spatial bodies: " << world.size() << "\n"
+            << "#   reference impact speed: " << v << " m/s\n"
+            << "#   shortest contact duration at that speed: " << world.shortest_contact_duration(v) << " s\n"
+            << "#   time step: " << dt << " s" << (sc.time.dt ? " (fixed by the scene)" : " (automatic)") << "\n"
+            << "#   steps: " << static_cast<long long>(std::ceil(sc.time.duration / dt)) << "\n";
+  return run::kExitOk;
+}
+
+// What a finished run prints on stdout.
+template <class W>
+void report(const scene::Scene& sc, const run::RunSummary& s) {
+  constexpr bool planar = std::is_same_v<W, dynamics::World>;
+  if (s.steps == 0)
+    std::cout << "Nothing to run: the checkpoint is the run's end (t = " << s.simulated << " s).\n";
+  else if (s.start_time > 0.0)
+    std::cout << "Done: " << s.steps << " steps, t = " << s.start_time << " -> " << s.simulated << " s simulated in "
+              << s.wall << " s wall (resumed from the checkpoint).\n";
+  else
     std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
+  if (s.channel_area_passed) {
+    std::cout << "Channel: " << *s.channel_area_passed << " m^2 of ice passed the strait entrance; "
+              << (s.channel_jam_time ? "jammed from t = " + std::to_string(*s.channel_jam_time) + " s"
+                                     : std::string("no jam"))
+              << " (results.h5: /diagnostics/channel)\n";
+  }
+  if constexpr (!planar) {
     if (s.first_contact)
       std::cout << "Contacts: the first at t = " << *s.first_contact << " s; " << s.contact_steps << " of " << s.steps
                 << " steps had one.\n";
-    else
+    else if (s.start_time == 0.0)
       std::cout << "No contact during the run: no two bodies touched (a scene about an impact did not reach it; "
                    "check the bodies' positions, velocities and run.duration).\n";
-    std::cout << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n";
-    if (sc.output.vtk)
-      std::cout << "  bodies.pvd" << (sc.output.contacts ? ", contacts.pvd" : "") << "  (open in ParaView)\n";
-    if (sc.output.hdf5) std::cout << "  results.h5                (time series; see docs/user-guide.md)\n";
+  }
+  std::cout << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n";
+  if (sc.output.vtk) {
+    std::string series = planar ? "floes.pvd" : "bodies.pvd";
+    if (sc.output.contacts) series += ", contacts.pvd";
+    if (sc.ice_sheet && sc.ice_sheet->bonds) series += ", bonds.pvd";
+    if (planar && sc.output.velocity_grid.enabled) series += ", velocity.pvd";
+    std::cout << "  " << series << std::string(series.size() < 24 ? 24 - series.size() : 1, ' ')
+              << " (open in ParaView)\n";
+  }
+  if (sc.output.hdf5) std::cout << "  results.h5               (time series; see docs/user-guide.md)\n";
+}
+
+// `polyfloe run` of a scene whose world (planar or spatial) is built: the options, the restart's checkpoint checked
+// against the world and the interrupted run's outputs before any file is touched (a bad checkpoint is bad input),
+// then the run.
+template <class W>
+int run_world(const Args& args, const scene::Scene& sc, W world, const scene::FieldStatistics* field) {
+  run::RunOptions opt;
+  opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
+  opt.threads = args.threads > 0 ? args.threads : std::clamp(polyfloe_default_threads(), 1, 1024);
+  opt.interactive = isatty(fileno(stderr)) != 0;
+  opt.profile = args.profile;
+  opt.version = POLYFLOE_VERSION;
+  std::optional<run::BasicSimulation<W>> sim;
+  try {
+    std::optional<run::Checkpoint> restart;
+    std::filesystem::path restart_file;
+    std::string scene_changes;  // what differs from the checkpointed run's resolved scene, as a line diff
+    if (!args.restart.empty()) {
+      restart_file = run::find_checkpoint(args.restart);
+      restart = run::read_checkpoint(restart_file);
+      if (sc.time.duration < restart->time() * (1.0 - 1e-12)) {
+        std::ostringstream why;
+        why << "run.duration = " << sc.time.duration << " s ends before the checkpoint " << restart_file.string()
+            << " (t = " << restart->time() << " s): a restart goes on from a checkpoint, it cannot take back "
+            << "frames already written; for a shorter run, run afresh into another folder (-o DIR)";
+        throw scene::SceneError(why.str());
+      }
+      const std::filesystem::path folder = restart_file.parent_path();
+      if (args.output.empty() && folder.filename() == "checkpoints") opt.output_dir = folder.parent_path();
+      const std::string now = scene::resolved_yaml(sc);
+      if (restart->scene_resolved != now) scene_changes = changed_lines(restart->scene_resolved, now);
+    }
+    opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
+    run::OutputFolder::check(opt.output_dir);
+    sim.emplace(sc, std::move(world), opt, std::move(restart), restart_file);
+    if (!scene_changes.empty())
+      std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "
+                   "an uninterrupted run of either. Changed lines:\n"
+                << scene_changes;
+    if (!restart_file.empty())
+      std::cerr << "polyfloe: restarting from " << restart_file.string() << " (t = " << sim->world().time()
+                << " s, step " << sim->world().step_count() << ")\n";
+  } catch (const run::CheckpointError& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const run::OutputFolderError& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const scene::SceneError& e) {  // a setting found unusable once the world exists, before any output
+    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
+    return run::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "polyfloe: error: " << e.what() << "\n";
+    return run::kExitFailure;
+  }
+
+  return guarded_run([&] {
+    std::cerr << "polyfloe: " << sc.name << ": " << sim->world().size()
+              << (std::is_same_v<W, dynamics::World> ? " bodies, " : " spatial bodies, ") << sc.time.duration
+              << " s simulated, dt = " << sim->dt() << " s, " << opt.threads
+              << (opt.threads == 1 ? " thread" : " threads") << " -> " << opt.output_dir.string() << "\n";
+    if (field && sc.floe_field && args.restart.empty())
+      std::cerr << "polyfloe: floe field: " << scene::to_string(*field) << "\n";
+    report<W>(sc, sim->run());
     return run::kExitOk;
   });
 }
@@ -288,12 +352,15 @@ int main(int argc, char** argv) {
   // Bad input is found here, before any output is created.
   scene::Scene sc;
   std::optional<dynamics::World> world;
+  std::optional<dynamics::SpatialWorld> spatial;
   scene::FieldStatistics field;
   try {
     sc = scene::read_scene(args.scene, args.overrides);
-    if (sc.spatial) return run_spatial_scene(args, sc);
-    world.emplace(scene::build_world(sc, &field));
-    const double dt = scene::time_step(sc, *world);
+    if (sc.spatial)
+      spatial.emplace(scene::build_spatial_world(sc));
+    else
+      world.emplace(scene::build_world(sc, &field));
+    const double dt = spatial ? scene::time_step(sc, *spatial) : scene::time_step(sc, *world);
     if (!(dt > 0.0) || !std::isfinite(dt))
       throw scene::SceneError(args.scene + ": cannot derive a time step (no dynamic body?); set run.dt");
   } catch (const scene::SceneError& e) {
@@ -309,90 +376,6 @@ int main(int argc, char** argv) {
     std::cerr << "polyfloe: error: " << e.what() << "\n";
     return run::kExitFailure;
   }
-
-  if (args.command == "check") return check(sc, *world, field);
-
-  run::RunOptions opt;
-  opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
-  opt.threads = args.threads > 0 ? args.threads : std::clamp(polyfloe_default_threads(), 1, 1024);
-  opt.interactive = isatty(fileno(stderr)) != 0;
-  opt.profile = args.profile;
-  opt.version = POLYFLOE_VERSION;
-  // The simulation checks a restart's checkpoint against the world and the interrupted run's outputs before it
-  // touches any file: a bad checkpoint is bad input.
-  std::optional<run::Simulation> sim;
-  try {
-    std::optional<run::Checkpoint> restart;
-    std::filesystem::path restart_file;
-    std::string scene_changes;  // what differs from the checkpointed run's resolved scene, as a line diff
-    if (!args.restart.empty()) {
-      restart_file = run::find_checkpoint(args.restart);
-      restart = run::read_checkpoint(restart_file);
-      if (sc.time.duration < restart->world.time * (1.0 - 1e-12)) {
-        std::ostringstream why;
-        why << "run.duration = " << sc.time.duration << " s ends before the checkpoint " << restart_file.string()
-            << " (t = " << restart->world.time << " s): a restart goes on from a checkpoint, it cannot take back "
-            << "frames already written; for a shorter run, run afresh into another folder (-o DIR)";
-        throw scene::SceneError(why.str());
-      }
-      const std::filesystem::path folder = restart_file.parent_path();
-      if (args.output.empty() && folder.filename() == "checkpoints") opt.output_dir = folder.parent_path();
-      const std::string now = scene::resolved_yaml(sc);
-      if (restart->scene_resolved != now) scene_changes = changed_lines(restart->scene_resolved, now);
-    }
-    opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
-    run::OutputFolder::check(opt.output_dir);
-    sim.emplace(sc, std::move(*world), opt, std::move(restart), restart_file);
-    if (!scene_changes.empty())
-      std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "
-                   "an uninterrupted run of either. Changed lines:\n"
-                << scene_changes;
-    if (!restart_file.empty())
-      std::cerr << "polyfloe: restarting from " << restart_file.string() << " (t = " << sim->world().time()
-                << " s, step " << sim->world().step_count() << ")\n";
-  } catch (const run::CheckpointError& e) {
-    std::cerr << "polyfloe: error: " << e.what() << "\n";
-    return run::kExitBadInput;
-  } catch (const run::OutputFolderError& e) {
-    std::cerr << "polyfloe: error: " << e.what() << "\n";
-    return run::kExitBadInput;
-  } catch (const scene::SceneError& e) {  // a setting found unusable once the world exists, before any output
-    std::cerr << "polyfloe: error: " << args.scene << ": " << e.what() << "\n";
-    return run::kExitBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "polyfloe: error: " << e.what() << "\n";
-    return run::kExitFailure;
-  }
-
-  return guarded_run([&] {
-    std::cerr << "polyfloe: " << sc.name << ": " << sim->world().size() << " bodies, " << sc.time.duration
-              << " s simulated, dt = " << sim->dt() << " s, " << opt.threads
-              << (opt.threads == 1 ? " thread" : " threads") << " -> " << opt.output_dir.string() << "\n";
-    if (sc.floe_field && args.restart.empty()) std::cerr << "polyfloe: floe field: " << scene::to_string(field) << "\n";
-    const run::RunSummary s = sim->run();
-    if (s.steps == 0)
-      std::cout << "Nothing to run: the checkpoint is the run's end (t = " << s.simulated << " s).\n";
-    else if (s.start_time > 0.0)
-      std::cout << "Done: " << s.steps << " steps, t = " << s.start_time << " -> " << s.simulated << " s simulated in "
-                << s.wall << " s wall (resumed from the checkpoint).\n";
-    else
-      std::cout << "Done: " << s.steps << " steps, " << s.simulated << " s simulated in " << s.wall << " s wall.\n";
-    if (s.channel_area_passed) {
-      std::cout << "Channel: " << *s.channel_area_passed << " m^2 of ice passed the strait entrance; "
-                << (s.channel_jam_time ? "jammed from t = " + std::to_string(*s.channel_jam_time) + " s"
-                                       : std::string("no jam"))
-                << " (results.h5: /diagnostics/channel)\n";
-    }
-    std::cout << "Results in " << std::filesystem::absolute(s.output_dir).string() << ":\n";
-    if (sc.output.vtk) {
-      std::string series = "floes.pvd";
-      if (sc.output.contacts) series += ", contacts.pvd";
-      if (sc.ice_sheet && sc.ice_sheet->bonds) series += ", bonds.pvd";
-      if (sc.output.velocity_grid.enabled) series += ", velocity.pvd";
-      std::cout << "  " << series << std::string(series.size() < 24 ? 24 - series.size() : 1, ' ')
-                << " (open in ParaView)\n";
-    }
-    if (sc.output.hdf5) std::cout << "  results.h5               (time series; see docs/user-guide.md)\n";
-    return run::kExitOk;
-  });
+  if (spatial) return args.command == "check" ? check(sc, *spatial) : run_world(args, sc, std::move(*spatial), nullptr);
+  return args.command == "check" ? check(sc, *world, field) : run_world(args, sc, std::move(*world), &field);
 }

@@ -1,11 +1,14 @@
 #include "dynamics/spatial_world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include <Eigen/Eigenvalues>
+
+#include "dynamics/parallel.h"
 
 namespace polyfloe::dynamics {
 
@@ -106,7 +109,11 @@ void SpatialWorld::update_world_vertices(int i) {
 }
 
 void SpatialWorld::kick(double half_dt) {
-  for (std::size_t i = 0; i < size(); ++i) {
+  const auto n = static_cast<std::ptrdiff_t>(size());
+  const int threads = threads_for(size());
+  POLYFLOE_OMP_FOR(threads)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
     if (!is_dynamic_[i]) continue;
     vel_[i] += half_dt * inv_mass_[i] * force_[i];
     ang_mom_[i] += half_dt * torque_[i];
@@ -114,7 +121,11 @@ void SpatialWorld::kick(double half_dt) {
 }
 
 void SpatialWorld::drift(double dt) {
-  for (std::size_t i = 0; i < size(); ++i) {
+  const auto n = static_cast<std::ptrdiff_t>(size());
+  const int threads = threads_for(size());
+  POLYFLOE_OMP_FOR(threads)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
     if (motion_[i] == Motion::fixed) continue;
     pos_[i] += dt * vel_[i];
     if (motion_[i] == Motion::kinematic) {
@@ -137,18 +148,27 @@ void SpatialWorld::drift(double dt) {
 }
 
 void SpatialWorld::step(double dt) {
+  using clock = std::chrono::steady_clock;
   if (!forces_ready_) compute_forces(dt);
+  const auto t0 = clock::now();
   kick(0.5 * dt);
   drift(dt);
   time_ += dt;
   ++steps_;
+  profile_.integrate += std::chrono::duration<double>(clock::now() - t0).count();
   compute_forces(dt);
+  const auto t1 = clock::now();
   kick(0.5 * dt);
+  profile_.integrate += std::chrono::duration<double>(clock::now() - t1).count();
+  ++profile_.steps;
 }
 
 void SpatialWorld::body_loads() {
-  const std::size_t n = size();
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto n = static_cast<std::ptrdiff_t>(size());
+  const int threads = threads_for(size());
+  POLYFLOE_OMP_FOR(threads)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
     force_[i].setZero();
     torque_[i].setZero();
     if (!is_dynamic_[i]) continue;
@@ -164,181 +184,54 @@ void SpatialWorld::body_loads() {
   }
 }
 
-// The narrow phase of bodies a and b (rotations rot_a, rot_b): sat, or libccd with its answer checked and sat
-// behind it.
-contact::SatContact SpatialWorld::measure(int a, int b, const Mat3& rot_a, const Mat3& rot_b) {
-  auto exact = [&] {
-    return contact::sat_penetration(*shape_[a], rot_a, world_vertices(a), pos_[a], *shape_[b], rot_b, world_vertices(b),
-                                    pos_[b]);
-  };
-  if (settings_.narrow_phase == SpatialNarrowPhase::sat) return exact();
-  const auto method = settings_.narrow_phase == SpatialNarrowPhase::mpr       ? contact::CcdMethod::mpr
-                      : settings_.narrow_phase == SpatialNarrowPhase::gjk_epa ? contact::CcdMethod::gjk_epa
-                                                                              : contact::CcdMethod::gjk_epa_tiebreak;
-  const auto r = contact::ccd_penetration(world_vertices(a), world_vertices(b), method, settings_.ccd);
-  if (r.status == contact::CcdStatus::failed) {
-    ++stats_.primary_failures;
-    return exact();
-  }
-  if (r.status == contact::CcdStatus::separated) {
-    // libccd's GJK can call an overlapping pair separated (3 in 120,000 random level-floe pairs: the failure
-    // map), which no check of its answer can see: every separation is confirmed exactly, a miss counted.
-    const contact::SatContact c = exact();
-    if (c.hit) ++stats_.primary_failures;
-    return c;
-  }
-  if (r.depth >
-      contact::least_face_overlap(*shape_[a], rot_a, world_vertices(a), *shape_[b], rot_b, world_vertices(b)) +
-          1e-9 * (shape_[a]->circumradius() + shape_[b]->circumradius())) {
-    // Deeper than a face axis allows: not the minimum translation (MPR's portal depth, up to 81 % too deep on
-    // vertex-into-vertex floes in the failure map; for prisms the face axes are every Minkowski face, so the
-    // check is exact for floes): sat answers.
-    ++stats_.primary_failures;
-    return exact();
-  }
-  contact::SatContact c;
-  c.hit = r.depth > 0.0;
-  c.depth = r.depth;
-  c.normal = r.normal;
-  c.point = r.point;
-  c.feature = contact::SatFeature::face_a;  // unknown: let the manifold look for faces
-  return c;
+SpatialWorldState SpatialWorld::state() const {
+  SpatialWorldState s;
+  s.time = time_;
+  s.steps = steps_;
+  s.forces_ready = forces_ready_;
+  s.ids = id_;
+  s.position = pos_;
+  s.velocity = vel_;
+  s.orientation = q_;
+  s.angular_momentum = ang_mom_;
+  s.force = force_;
+  s.torque = torque_;
+  s.contact_history = springs_.entries();
+  s.narrow_phase_queries = stats_.queries;
+  s.narrow_phase_failures = stats_.primary_failures;
+  return s;
 }
 
-// The points that carry the normal force of the contact c between a and b: the manifold's, or the narrow phase's
-// one point; k takes its normal, centre, depth and point count.
-contact::ContactManifold SpatialWorld::manifold(int a, int b, const Mat3& rot_a, const Mat3& rot_b,
-                                                const contact::SatContact& c, SpatialContact& k) const {
-  k.a = a;
-  k.b = b;
-  k.normal = c.normal;
-  k.point = c.point;
-  k.depth = c.depth;
-  contact::ContactManifold m;
-  // sat: only for face contacts (an edge-edge contact is one point, whatever faces lie near its normal)
-  if (settings_.contact_point == ContactPointModel::manifold && c.feature != contact::SatFeature::edge_edge) {
-    m = contact::clip_manifold(*shape_[a], rot_a, world_vertices(a), *shape_[b], rot_b, world_vertices(b), c.normal);
+void SpatialWorld::restore(const SpatialWorldState& s) {
+  const std::size_t n = size();
+  auto bad = [](const std::string& what) { throw std::invalid_argument("spatial world state: " + what); };
+  if (s.ids != id_) bad("its bodies (ids, order) are not this world's");
+  if (const std::string problem = body_row_problem(s, true); !problem.empty()) bad(problem);
+  if (!std::isfinite(s.time) || s.time < 0.0) bad("time must be finite and >= 0");
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::abs(s.orientation[i].norm() - 1.0) > 1e-9)
+      bad("the orientation of body " + std::to_string(id_[i]) + " is not a unit quaternion");
+    if (motion_[i] == Motion::fixed && (s.position[i] != pos_[i] || s.orientation[i].coeffs() != q_[i].coeffs()))
+      bad("fixed body " + std::to_string(id_[i]) + " is not where the scene puts it");
   }
-  if (m.count > 0) {
-    k.normal = m.normal;
-    k.point = m.centre();
-    k.depth = m.max_depth();
-    k.manifold_points = m.count;
-  } else {
-    m.count = 1;
-    m.points[0] = c.point;
-    m.depths[0] = c.depth;
-  }
-  return m;
-}
-
-// The forces of the contact k (points m) between k.a and k.b added to the bodies; whether it carries any (false:
-// no effective mass along the normal).
-bool SpatialWorld::apply_contact(const contact::ContactManifold& m, double dt, std::size_t& hint, SpatialContact& k) {
-  const int a = k.a, b = k.b;
-  auto relative_velocity = [&](const Vec3& x) {
-    return Vec3(vel_[b] + angular_velocity(b).cross(x - pos_[b]) - vel_[a] - angular_velocity(a).cross(x - pos_[a]));
-  };
-  const Vec3 ra = k.point - pos_[a], rb = k.point - pos_[b];
-  // Effective mass of the pair along the normal at the contact centre (rotation included): the damping that gives
-  // restitution e for a point mass gives it for an eccentric impact too.
-  double inv_m = 0.0;
-  for (const auto& [i, r] : {std::pair<int, Vec3>{a, ra}, std::pair<int, Vec3>{b, rb}}) {
-    if (!is_dynamic_[i]) continue;
-    const Vec3 rn = r.cross(k.normal);
-    inv_m += inv_mass_[i] + rn.dot(world_inverse_inertia(i) * rn);
-  }
-  if (!(inv_m > 0.0)) return false;
-  const double ra_eff = is_dynamic_[a] ? radius_[a] : contact::kInfinite;
-  const double rb_eff = is_dynamic_[b] ? radius_[b] : contact::kInfinite;
-  auto coef = law_.coefficients(ra_eff, rb_eff, 1.0 / inv_m, contact::kInfinite);
-  // Each point is a Hertz contact of its own depth (W = sum 2/5 k_n d_k^2.5: conservative, a flat face on a face
-  // is stiffer than a corner), applied where it is. N points at one depth act as one contact of stiffness N k_n;
-  // the damping that keeps its restitution e scales as sqrt(k) (speed-independent model: c = zeta sqrt(m k)) or
-  // k^0.6 (paper model: c ~ k^0.6 m^0.4), so each point gets N^(1/2 or 0.6) c / N.
-  const auto point_coef = [&] {
-    auto pc = coef;
-    const double exponent = law_.settings().damping == contact::DampingModel::paper ? -0.4 : -0.5;
-    pc.damping = coef.damping * std::pow(static_cast<double>(m.count), exponent);
-    return pc;
-  }();
-  Vec3 fn = Vec3::Zero(), torque_a = Vec3::Zero(), torque_b = Vec3::Zero();
-  double normal_total = 0.0;
-  k.stored_energy = 0.0;
-  for (int p = 0; p < m.count; ++p) {
-    const double d = m.depths[p];
-    const double rate = -k.normal.dot(relative_velocity(m.points[p]));
-    const double f = law_.evaluate(point_coef, d, rate, 0.0, 0.0, dt).normal;
-    const Vec3 fp = f * k.normal;
-    fn += fp;
-    torque_b += (m.points[p] - pos_[b]).cross(fp);
-    torque_a -= (m.points[p] - pos_[a]).cross(fp);
-    normal_total += f;
-    k.stored_energy += 0.4 * coef.k_n * d * d * std::sqrt(d);
-  }
-  const Vec3 vrel = relative_velocity(k.point);
-  const Vec3 ft = friction(k, coef, normal_total, vrel, dt, hint);
-  {
-    const double kk = coef.k_n * m.count, mm = 1.0 / inv_m;
-    const double rate = -k.normal.dot(vrel);
-    const double v2 = rate * rate + 0.8 * kk * k.depth * k.depth * std::sqrt(k.depth) / mm;
-    k.duration = contact::hertz_contact_duration(kk, mm, std::sqrt(v2));
-  }
-  k.normal_force = normal_total;
-  k.force = fn + ft;
-  if (!finite(k.force) || !finite(k.point) || !finite(torque_a) || !finite(torque_b)) {
-    throw std::runtime_error("spatial contact between bodies " + std::to_string(id_[a]) + " and " +
-                             std::to_string(id_[b]) + " gave a non-finite force at t = " + std::to_string(time_) +
-                             " s");
-  }
-  force_[b] += k.force;
-  torque_[b] += torque_b + rb.cross(ft);
-  force_[a] -= k.force;
-  torque_[a] += torque_a - ra.cross(ft);
-  return true;
-}
-
-// The tangential force of the contact k at its centre (relative velocity vrel there): last step's spring turned
-// into today's tangent plane (length kept), advanced by the slip, capped by Coulomb on the total normal force
-// (contact::tangential_spring, the planar world's too); the spring kept for the next step where there is friction.
-Vec3 SpatialWorld::friction(const SpatialContact& k, const contact::PairCoefficients& coef, double normal_total,
-                            const Vec3& vrel, double dt, std::size_t& hint) {
-  const contact::PairKey key = contact::make_key(id_[k.a], id_[k.b]);
-  Vec3 s = Vec3::Zero();
-  bool found = false;
-  if (const Vec3 last = springs_.previous(key, hint, &found); found) {
-    const double len = last.norm();
-    s = last - k.normal * k.normal.dot(last);
-    const double l2 = s.norm();
-    s = l2 > 0.0 ? Vec3(s * (len / l2)) : Vec3::Zero();
-  }
-  const Vec3 slip = vrel - k.normal * k.normal.dot(vrel);
-  const contact::TangentialSpring<Vec3> spring =
-      contact::tangential_spring(s, slip, coef.k_s * std::sqrt(k.depth), coef.mu * normal_total, dt);
-  if (coef.mu > 0.0) springs_.store(key, spring.spring);
-  return spring.force;
-}
-
-void SpatialWorld::compute_forces(double dt) {
-  body_loads();  // gravity and buoyancy
-  broad_.find_pairs(boxes_, is_dynamic_, pairs_);
+  for (const auto& [key, spring] : s.contact_history)
+    if (!(key.lo < key.hi) || !index_.count(key.lo) || !index_.count(key.hi) || !spring.allFinite())
+      bad("the contact history holds a spring of bodies " + std::to_string(key.lo) + " and " + std::to_string(key.hi) +
+          " that is not a finite spring of a pair of this world");
+  time_ = s.time;
+  steps_ = s.steps;
+  forces_ready_ = s.forces_ready;
+  pos_ = s.position;
+  vel_ = s.velocity;
+  q_ = s.orientation;
+  ang_mom_ = s.angular_momentum;
+  force_ = s.force;
+  torque_ = s.torque;
+  springs_.restore(s.contact_history);
+  stats_.queries = s.narrow_phase_queries;
+  stats_.primary_failures = s.narrow_phase_failures;
   contacts_.clear();
-  std::size_t hint = 0;  // pairs come in nearly last step's order (contact::HistoryStore::previous)
-  for (const auto& p : pairs_) {
-    int a = p.a, b = p.b;
-    if (z_lo_[a] > z_hi_[b] || z_lo_[b] > z_hi_[a]) continue;
-    if (id_[a] > id_[b]) std::swap(a, b);
-    ++stats_.queries;
-    const Mat3 rot_a = q_[a].toRotationMatrix(), rot_b = q_[b].toRotationMatrix();
-    const contact::SatContact c = measure(a, b, rot_a, rot_b);
-    if (!c.hit) continue;
-    SpatialContact k;
-    const contact::ContactManifold m = manifold(a, b, rot_a, rot_b, c, k);
-    if (!(k.depth > 0.0)) continue;
-    if (apply_contact(m, dt, hint, k)) contacts_.push_back(k);
-  }
-  springs_.end_step();
-  forces_ready_ = true;
+  for (std::size_t i = 0; i < n; ++i) update_world_vertices(static_cast<int>(i));
 }
 
 double SpatialWorld::kinetic_energy() const {

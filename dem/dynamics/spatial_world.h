@@ -16,6 +16,8 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -28,6 +30,7 @@
 #include "contact/narrow_phase_ccd.h"
 #include "contact/narrow_phase_sat3d.h"
 #include "dynamics/body.h"
+#include "dynamics/state_fields.h"
 #include "geometry/polyhedron.h"
 
 namespace polyfloe::dynamics {
@@ -99,6 +102,41 @@ struct NarrowPhaseStats {
   std::uint64_t queries = 0, primary_failures = 0;
 };
 
+// Everything that carries from one step to the next (what a checkpoint stores; see WorldState): shapes, masses
+// and world-frame vertices are rebuilt from the scene and the poses.
+struct SpatialWorldState {
+  double time = 0.0;  // [s]
+  std::uint64_t steps = 0;
+  bool forces_ready = false;                                          // force and torque below belong to this state
+  std::vector<BodyId> ids;                                            // [N], the order of every array below
+  std::vector<Vec3> position, velocity;                               // [N] [m, m/s]
+  std::vector<Quat> orientation;                                      // [N] body to world
+  std::vector<Vec3> angular_momentum, force, torque;                  // [N] [kg m^2/s about the centre, N, N m]
+  std::vector<contact::HistoryStore<Vec3>::Entry> contact_history;    // the tangential springs [m]
+  std::uint64_t narrow_phase_queries = 0, narrow_phase_failures = 0;  // NarrowPhaseStats
+};
+
+// The fields of a SpatialWorldState (dynamics/state_fields.h), laid out as a WorldState's.
+template <class V, class S>
+requires std::is_same_v<std::remove_const_t<S>, SpatialWorldState>
+void visit_fields(V& v, S& s) {
+  v.attribute("time", s.time);
+  v.count("steps", "step count", s.steps, 1e12);
+  v.attribute("forces_ready", s.forces_ready);
+  v.count("narrow_phase_queries", "narrow phase query count", s.narrow_phase_queries, 1e18);
+  v.count("narrow_phase_failures", "narrow phase failure count", s.narrow_phase_failures, 1e18);
+  v.group("world", [&] {
+    v.bodies("ids", s.ids);
+    v.bodies("position", s.position);
+    v.bodies("orientation", s.orientation);
+    v.bodies("velocity", s.velocity);
+    v.bodies("angular_momentum", s.angular_momentum);
+    v.bodies("force", s.force);
+    v.bodies("torque", s.torque);
+  });
+  v.group("contacts", [&] { v.history(s.contact_history); });
+}
+
 class SpatialWorld {
  public:
   explicit SpatialWorld(const SpatialSettings& settings);
@@ -110,6 +148,20 @@ class SpatialWorld {
   // Advance by dt [s]. Throws std::runtime_error naming the pair when neither narrow phase can measure a contact.
   void step(double dt);
   void compute_forces(double dt);
+
+  // Worker threads of step() (OpenMP; 1 = serial, the default). The result does not depend on it, bitwise: the
+  // per-body stages write only their own body, and every candidate pair is evaluated apart, its forces then added
+  // in the broad phase's order on one thread. Without OpenMP in the build it is ignored.
+  void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
+  int threads() const { return threads_; }
+
+  // The state a checkpoint needs, and its restoration into a SpatialWorld built from the same scene. restore()
+  // throws std::invalid_argument naming the first mismatch (other bodies, an array of the wrong size, a
+  // non-finite value, a quaternion that is not of unit length, a spring of a pair that does not exist), leaving
+  // this world unchanged.
+  SpatialWorldState state() const;
+  void restore(const SpatialWorldState& s);
+  const StepProfile& profile() const { return profile_; }
 
   double time() const { return time_; }  // [s]
   std::uint64_t step_count() const { return steps_; }
@@ -150,12 +202,29 @@ class SpatialWorld {
   Mat3 world_inverse_inertia(int i) const;
   // compute_forces' parts: gravity and buoyancy, the narrow phase of a pair, its manifold, its forces, its friction.
   void body_loads();
-  contact::SatContact measure(int a, int b, const Mat3& rot_a, const Mat3& rot_b);
+  // What the evaluation of one candidate pair gives (written by one thread, summed in pair order by another).
+  struct PairResult {
+    bool measured = false;  // the boxes overlap in z: a narrow-phase query
+    bool failure = false;   // the chosen libccd method failed and sat answered (NarrowPhaseStats)
+    bool contact = false;   // a contact with forces (k, torques, spring below)
+    bool spring = false;    // a tangential spring to keep (friction)
+    SpatialContact k;
+    Vec3 torque_a, torque_b;  // [N m]
+    Vec3 tangential_spring;   // [m]
+    std::string error;        // a contact that could not be measured or gave a non-finite force
+  };
+  void evaluate_pair(const contact::CandidatePair& p, double dt, std::size_t& hint, PairResult& r) const;
+  contact::SatContact measure(int a, int b, const Mat3& rot_a, const Mat3& rot_b, bool& failure) const;
   contact::ContactManifold manifold(int a, int b, const Mat3& rot_a, const Mat3& rot_b, const contact::SatContact& c,
                                     SpatialContact& k) const;
-  bool apply_contact(const contact::ContactManifold& m, double dt, std::size_t& hint, SpatialContact& k);
-  Vec3 friction(const SpatialContact& k, const contact::PairCoefficients& coef, double normal_total, const Vec3& vrel,
-                double dt, std::size_t& hint);
+  bool apply_contact(const contact::ContactManifold& m, double dt, std::size_t& hint, PairResult& r) const;
+  Vec3 friction(const PairResult& r, const contact::PairCoefficients& coef, double normal_total, const Vec3& vrel,
+                double dt, std::size_t& hint, Vec3& spring) const;
+  void sum_pairs();  // the pairs' results into the forces, contacts, springs and counts, in pair order
+  // The threads of a loop over `items` bodies: one below kParallelBodies, where starting the threads costs more
+  // than the loop (a few microseconds; the result is the same either way).
+  static constexpr std::size_t kParallelBodies = 256;
+  int threads_for(std::size_t items) const { return items >= kParallelBodies ? threads_ : 1; }
 
   SpatialSettings settings_;
   contact::ContactLaw law_;
@@ -163,6 +232,8 @@ class SpatialWorld {
   double time_ = 0.0;
   std::uint64_t steps_ = 0;
   bool forces_ready_ = false;
+  int threads_ = 1;
+  StepProfile profile_;
   // hot state
   std::vector<Vec3> pos_, vel_, ang_mom_, force_, torque_;
   std::vector<Quat> q_;
@@ -183,6 +254,8 @@ class SpatialWorld {
   std::vector<double> z_lo_, z_hi_;
   // contacts
   std::vector<contact::CandidatePair> pairs_;
+  std::vector<PairResult> results_;  // per candidate pair
+  std::vector<std::size_t> hints_;   // per thread: where its last history lookup was found
   std::vector<SpatialContact> contacts_;
   contact::HistoryStore<Vec3> springs_;  // the tangential spring of each touching pair with friction [m]
   NarrowPhaseStats stats_;

@@ -343,21 +343,8 @@ void World::restore(const WorldState& s) {
     if (s.ids[i] != id_[i])
       bad("body " + std::to_string(i) + " has id " + std::to_string(s.ids[i]) + ", this world's has id " +
           std::to_string(id_[i]));
-  auto sized = [&](std::size_t got, const char* what, bool optional) {
-    if (got != n && !(optional && got == 0))
-      bad(std::string(what) + " has " + std::to_string(got) + " entries for " + std::to_string(n) + " bodies");
-  };
-  sized(s.position.size(), "position", false);
-  sized(s.velocity.size(), "velocity", false);
-  sized(s.force.size(), "force", false);
-  sized(s.external_force.size(), "external_force", false);
-  sized(s.yaw.size(), "yaw", false);
-  sized(s.omega.size(), "omega", false);
-  sized(s.torque.size(), "torque", false);
-  sized(s.external_torque.size(), "external_torque", false);
-  sized(s.drift_load.size(), "drift_load", true);
-  sized(s.lin_force.size(), "lin_force", true);
-  sized(s.lin_torque.size(), "lin_torque", true);
+  // every per-body array a row per body (the drift model's may be empty)
+  if (const std::string problem = body_row_problem(s, false); !problem.empty()) bad(problem);
   if (s.lin_force.size() != s.lin_torque.size() || (!s.lin_force.empty() && s.drift_load.size() != n))
     bad("the linear drift model does not match the drift loads");
   if (s.bonds.has_value() != bonds_.has_value())

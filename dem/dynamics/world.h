@@ -10,6 +10,7 @@
 #include <span>
 #include <unordered_map>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "dynamics/body.h"
 #include "dynamics/neighbour_lists.h"
 #include "dynamics/slots.h"
+#include "dynamics/state_fields.h"
 #include "forcing/drift.h"
 
 namespace polyfloe::dynamics {
@@ -72,16 +74,6 @@ struct ContactRecord {
   Vec2 force_on_b() const { return force; }
 };
 
-// Wall-clock seconds spent in each stage of step(), summed over steps. `shapes` is the slot sort and one pass over
-// the bodies: world-frame shapes, the velocity prediction the velocity-dependent forces are evaluated at, and
-// between full drift evaluations the linear model's drift loads; `forcing` is the full drift evaluations.
-struct StepProfile {
-  double integrate = 0.0, shapes = 0.0, broad = 0.0, narrow_and_law = 0.0, forcing = 0.0, bonds = 0.0;
-  std::uint64_t steps = 0;
-  std::uint64_t candidates = 0, contacts = 0;  // broad-phase pairs and contacts, summed over the evaluations
-  std::uint64_t reused = 0;  // contacts whose overlap was built from the topology kept from the step before
-};
-
 // Everything that carries from one step to the next and is not rebuilt from the scene: what a checkpoint stores
 // so that a restarted run continues bitwise as the uninterrupted one would. Shapes, masses, quadrature points,
 // bond geometry and world-frame vertices are rebuilt from the scene and the poses.
@@ -101,6 +93,42 @@ struct WorldState {
   std::optional<bonds::BondState> bonds;
   int bonds_failed_last = 0;
 };
+
+// The fields of a WorldState (dynamics/state_fields.h), in the checkpoint's layout: scalars at the top, the
+// per-body arrays in `world`, the contact history in `contacts`, the bonds' state in `bonds`.
+template <class V, class S>
+requires std::is_same_v<std::remove_const_t<S>, WorldState>
+void visit_fields(V& v, S& s) {
+  v.attribute("time", s.time);
+  v.count("steps", "step count", s.steps, 1e12);
+  v.attribute("forces_ready", s.forces_ready);
+  v.attribute("bonds_failed_last", s.bonds_failed_last);
+  v.group("world", [&] {
+    v.bodies("ids", s.ids);
+    v.bodies("position", s.position);
+    v.bodies("yaw", s.yaw);
+    v.bodies("velocity", s.velocity);
+    v.bodies("omega", s.omega);
+    v.bodies("force", s.force);
+    v.bodies("torque", s.torque);
+    v.bodies("external_force", s.external_force);
+    v.bodies("external_torque", s.external_torque);
+    v.bodies_or_none("drift_load", s.drift_load);
+    v.bodies_or_none("lin_force", s.lin_force);
+    v.bodies_or_none("lin_torque", s.lin_torque);
+  });
+  v.group("contacts", [&] { v.history(s.contact_history); });
+  v.optional_group("bonds", s.bonds, [&](auto& b) {
+    v.rows("face_intact", b.face_intact);
+    v.rows("face_points_left", b.face_points_left);
+    v.rows("face_broken_time", b.face_broken_time);
+    v.rows("point_intact", b.point_intact);
+    v.rows("point_sigma", b.point_sigma);
+    v.rows("point_tau", b.point_tau);
+    v.attribute("max_sigma", b.max_sigma);
+    v.attribute("max_tau", b.max_tau);
+  });
+}
 
 class World {
  public:

@@ -163,6 +163,27 @@ std::vector<Group::Child> Group::children() const {
   return out;
 }
 
+void Group::append_series_rows_from(const Group& from, std::uint64_t rows) const {
+  for (const Child& c : children()) {
+    auto missing = [&] {
+      return IoError(from.where() + "/" + c.name + ": missing in the file of the interrupted run");
+    };
+    if (c.group) {
+      if (!from.exists(c.name)) throw missing();
+      open_group(c.name).append_series_rows_from(from.open_group(c.name), rows);
+      continue;
+    }
+    Dataset to = open_dataset(c.name);
+    if (!to.extendible()) continue;
+    if (!from.exists(c.name)) throw missing();
+    const Dataset source = from.open_dataset(c.name);
+    if (source.rows() < rows)
+      throw IoError(source.where() + ": has " + std::to_string(source.rows()) + " frames, the restart needs " +
+                    std::to_string(rows));
+    to.append_rows_from(source, rows);
+  }
+}
+
 bool Group::exists(std::string_view child) const {
   const std::string c(child);
   ErrorScope scope(where_of(child));

@@ -198,6 +198,10 @@ class Group : public Object {
   Dataset create_series(std::string_view child, DType type, const Dims& row_dims, std::uint64_t chunk_rows,
                         int deflate_level = 0);
   Dataset open_dataset(std::string_view child) const;
+  // A run's restart: appends the first `rows` rows of every series (extendible dataset) under this group, at any
+  // depth, from the dataset of the same path under `from`. Throws IoError naming a series that `from` lacks or
+  // that has fewer rows. Fixed datasets are left as they are.
+  void append_series_rows_from(const Group& from, std::uint64_t rows) const;
 
  private:
   friend class File;

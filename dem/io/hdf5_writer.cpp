@@ -407,35 +407,10 @@ hdf5::Group& Hdf5Writer::diagnostics() { return impl_->diagnostics; }
 void Hdf5Writer::write_frame(const dynamics::World& world, std::span<const double> extra) {
   impl_->write_frame(world, extra);
 }
-namespace {
-
-void copy_series(const hdf5::Group& to_parent, const hdf5::Group& from_parent, std::uint64_t frames) {
-  for (const hdf5::Group::Child& c : to_parent.children()) {
-    if (c.group) {
-      const hdf5::Group to = to_parent.open_group(c.name);
-      if (!from_parent.exists(c.name))
-        throw IoError(from_parent.where() + "/" + c.name + ": missing in the file of the interrupted run");
-      copy_series(to, from_parent.open_group(c.name), frames);
-      continue;
-    }
-    Dataset to = to_parent.open_dataset(c.name);
-    if (!to.extendible()) continue;
-    if (!from_parent.exists(c.name))
-      throw IoError(from_parent.where() + "/" + c.name + ": missing in the file of the interrupted run");
-    const Dataset from = from_parent.open_dataset(c.name);
-    if (from.rows() < frames)
-      throw IoError(from.where() + ": has " + std::to_string(from.rows()) + " frames, the restart needs " +
-                    std::to_string(frames));
-    to.append_rows_from(from, frames);
-  }
-}
-
-}  // namespace
-
 void Hdf5Writer::adopt_frames(const std::filesystem::path& previous, int frames) {
   if (impl_->frames != 0) throw IoError(path().string() + ": frames can only be adopted into a new file");
   const hdf5::File old(previous, hdf5::File::Mode::read_only);
-  copy_series(impl_->file.root(), old.root(), static_cast<std::uint64_t>(frames));
+  impl_->file.root().append_series_rows_from(old.root(), static_cast<std::uint64_t>(frames));
   impl_->frames = frames;
   impl_->file.flush();
 }

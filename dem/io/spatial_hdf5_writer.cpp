@@ -33,6 +33,7 @@ struct SpatialHdf5Writer::Impl {
   Dataset time, position, orientation, velocity, angular_velocity;
   Dataset kinetic_energy, contact_energy, contact_count, linear_momentum, angular_momentum, failures;
   std::vector<double> row3, row4;
+  bool swmr = false;
 
   Impl(const std::filesystem::path& path, const dynamics::SpatialWorld& world, const RunInfo& info)
       : file(path, hdf5::File::Mode::truncate), bodies(world.size()) {
@@ -76,10 +77,17 @@ struct SpatialHdf5Writer::Impl {
     failures = series(diag, "narrow_phase_failures", DType::i64, {}, kSeriesChunk, "1",
                       "queries the chosen narrow phase failed and MPR answered (cumulative)");
     file.flush();
+  }
+
+  void start_swmr() {
+    if (swmr) return;
+    file.flush();
     file.start_swmr_write();
+    swmr = true;
   }
 
   void write_frame(const dynamics::SpatialWorld& w) {
+    start_swmr();
     if (w.size() != bodies) throw IoError(file.path().string() + ": the number of bodies changed");
     const double t = w.time();
     time.append_rows<double>({&t, 1}, 1);
@@ -124,5 +132,15 @@ SpatialHdf5Writer::SpatialHdf5Writer(const std::filesystem::path& file, const dy
 SpatialHdf5Writer::~SpatialHdf5Writer() = default;
 void SpatialHdf5Writer::write_frame(const dynamics::SpatialWorld& world) { impl_->write_frame(world); }
 int SpatialHdf5Writer::frames() const { return impl_->frames; }
+void SpatialHdf5Writer::flush() { impl_->file.flush(); }
+void SpatialHdf5Writer::start_swmr() { impl_->start_swmr(); }
+
+void SpatialHdf5Writer::adopt_frames(const std::filesystem::path& previous, int frames) {
+  if (impl_->frames != 0) throw IoError(impl_->file.path().string() + ": frames can only be adopted into a new file");
+  const hdf5::File old(previous, hdf5::File::Mode::read_only);
+  impl_->file.root().append_series_rows_from(old.root(), static_cast<std::uint64_t>(frames));
+  impl_->frames = frames;
+  impl_->file.flush();
+}
 
 }  // namespace polyfloe::io

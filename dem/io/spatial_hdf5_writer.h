@@ -10,7 +10,7 @@
 //          chosen method failed and MPR answered, cumulative)
 //
 // Root attributes as a planar run's (scene_path, scene_text, code_version, overrides, dt, created_by) plus
-// mode = "spatial". SWMR from the first frame, flushed per frame.
+// mode = "spatial". SWMR from the first frame (or start_swmr()), flushed per frame.
 #pragma once
 
 #include <filesystem>
@@ -28,7 +28,13 @@ class SpatialHdf5Writer {
  public:
   SpatialHdf5Writer(const std::filesystem::path& file, const dynamics::SpatialWorld& world, const RunInfo& info);
   ~SpatialHdf5Writer();
+  // Appends one frame at world.time() and flushes. Throws IoError if the bodies differ from the first frame's.
   void write_frame(const dynamics::SpatialWorld& world);
+  void flush();
+  // As Hdf5Writer: single-writer/multiple-reader mode from here on (done by the first write_frame() if not before),
+  // and a restart's frames 0..frames-1 copied from the interrupted run's file.
+  void start_swmr();
+  void adopt_frames(const std::filesystem::path& previous, int frames);
   int frames() const;
 
  private:

@@ -107,6 +107,7 @@ vtkSmartPointer<vtkPolyData> spatial_contacts_polydata(const dynamics::SpatialWo
 SpatialVtkSeriesWriter::SpatialVtkSeriesWriter(const fs::path& dir, bool write_contacts, OutputManifest* manifest)
     : dir_(dir),
       write_contacts_(write_contacts),
+      manifest_(manifest),
       bodies_pvd_(dir / "bodies.pvd", manifest),
       contacts_pvd_(dir / "contacts.pvd", manifest) {
   std::error_code ec;
@@ -132,6 +133,16 @@ void SpatialVtkSeriesWriter::write_frame(const dynamics::SpatialWorld& world) {
   bodies_pvd_.add(world.time(), bodies_file);
   if (write_contacts_) contacts_pvd_.add(world.time(), contacts_file);
   ++frames_;
+}
+
+void SpatialVtkSeriesWriter::resume(std::span<const double> frame_times) {
+  const int frames = static_cast<int>(frame_times.size());
+  // The collections first, then the frames they no longer list (VtkSeriesWriter::resume).
+  bodies_pvd_.resume(frame_times, "bodies", ".vtp");
+  if (write_contacts_) contacts_pvd_.resume(frame_times, "contacts", ".vtp");
+  remove_frames_from(dir_, "bodies", ".vtp", frames, manifest_);
+  remove_frames_from(dir_, "contacts", ".vtp", frames, manifest_);
+  frames_ = frames;
 }
 
 }  // namespace polyfloe::io

@@ -88,11 +88,14 @@ class SpatialVtkSeriesWriter {
  public:
   SpatialVtkSeriesWriter(const std::filesystem::path& dir, bool write_contacts, OutputManifest* manifest = nullptr);
   void write_frame(const dynamics::SpatialWorld& world);
+  // As VtkSeriesWriter::resume.
+  void resume(std::span<const double> frame_times);
   int frames() const { return frames_; }
 
  private:
   std::filesystem::path dir_;
   bool write_contacts_;
+  OutputManifest* manifest_;
   int frames_ = 0;
   PvdCollection bodies_pvd_;
   PvdCollection contacts_pvd_;

@@ -45,28 +45,9 @@ class Fnv {
   std::uint64_t h_ = 0xcbf29ce484222325ull;
 };
 
-std::vector<double> flat(const std::vector<Vec2>& v) {
-  std::vector<double> out(2 * v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    out[2 * i] = v[i].x();
-    out[2 * i + 1] = v[i].y();
-  }
-  return out;
-}
-
-std::vector<Vec2> unflat(const std::vector<double>& v) {
-  std::vector<Vec2> out(v.size() / 2);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {v[2 * i], v[2 * i + 1]};
-  return out;
-}
-
 template <class T>
 void put(Group& g, const char* name, const std::vector<T>& v) {
   g.write_dataset<T>(name, std::span<const T>(v));
-}
-void put2(Group& g, const char* name, const std::vector<Vec2>& v) {
-  const std::vector<double> f = flat(v);
-  g.write_dataset<double>(name, std::span<const double>(f), Dims{v.size(), 2});
 }
 
 // Reads a dataset of `rows` rows (any row shape; `width` values per row) into a flat vector.
@@ -93,28 +74,207 @@ std::size_t rows_of(const Group& g, const char* name) {
 
 std::optional<double> maybe(double v) { return std::isnan(v) ? std::nullopt : std::optional<double>(v); }
 
+// "1e12" for 10^12.
+std::string power_of_ten(double x) { return "1e" + std::to_string(static_cast<int>(std::lround(std::log10(x)))); }
+
+// Writes a world state's fields (dynamics/state_fields.h) into a checkpoint: scalars as attributes, arrays as
+// datasets of [rows] or [rows, width].
+class StateWriter {
+ public:
+  explicit StateWriter(Group& root) : g_(&root) {}
+  template <class T>
+  void attribute(const char* name, const T& x) {
+    if constexpr (std::is_floating_point_v<T>)
+      g_->set_attribute(name, x);
+    else
+      g_->set_attribute(name, static_cast<std::int64_t>(x));
+  }
+  void count(const char* name, const char*, const std::uint64_t& x, double) {
+    g_->set_attribute(name, static_cast<std::int64_t>(x));
+  }
+  template <class T>
+  void bodies(const char* name, const std::vector<T>& rows) {
+    put_rows(name, rows);
+  }
+  template <class T>
+  void bodies_or_none(const char* name, const std::vector<T>& rows) {
+    put_rows(name, rows);
+  }
+  template <class T>
+  void rows(const char* name, const std::vector<T>& rows) {
+    put_rows(name, rows);
+  }
+  template <class Value>
+  void history(const std::vector<std::pair<contact::PairKey, Value>>& entries) {
+    std::vector<std::uint64_t> lo, hi;
+    for (const auto& e : entries) {
+      lo.push_back(e.first.lo);
+      hi.push_back(e.first.hi);
+    }
+    put(*g_, "lo", lo);
+    put(*g_, "hi", hi);
+    if constexpr (std::is_same_v<Value, contact::PlanarHistory>) {
+      std::vector<double> spring, normal_force;
+      for (const auto& e : entries) {
+        spring.push_back(e.second.spring);
+        normal_force.push_back(e.second.normal_force);
+      }
+      put(*g_, "spring", spring);
+      put(*g_, "normal_force", normal_force);
+    } else {
+      std::vector<Value> spring;
+      for (const auto& e : entries) spring.push_back(e.second);
+      put_rows("spring", spring);
+    }
+  }
+  template <class F>
+  void group(const char* name, F&& fields) {
+    Group sub = g_->create_group(name);
+    Group* up = std::exchange(g_, &sub);
+    fields();
+    g_ = up;
+  }
+  template <class T, class F>
+  void optional_group(const char* name, const std::optional<T>& value, F&& fields) {
+    if (!value) return;
+    group(name, [&] { fields(*value); });
+  }
+
+ private:
+  template <class T>
+  void put_rows(const char* name, const std::vector<T>& rows) {
+    using Row = dynamics::StateRow<T>;
+    std::vector<typename Row::Scalar> flat(rows.size() * Row::width);
+    for (std::size_t i = 0; i < rows.size(); ++i) Row::pack(rows[i], flat.data() + i * Row::width);
+    const std::span<const typename Row::Scalar> data(flat);
+    if constexpr (Row::width == 1)
+      g_->write_dataset<typename Row::Scalar>(name, data);
+    else
+      g_->write_dataset<typename Row::Scalar>(name, data, Dims{rows.size(), static_cast<std::uint64_t>(Row::width)});
+  }
+  Group* g_;
+};
+
+// Reads a world state's fields from a checkpoint, checking every array's shape (the per-body ones have as many
+// rows as `ids`) and every count's range before anything is sized by it. Throws CheckpointError.
+class StateReader {
+ public:
+  StateReader(const Group& root, const fs::path& file) : g_(&root), file_(file) {}
+  template <class T>
+  void attribute(const char* name, T& x) {
+    if constexpr (std::is_floating_point_v<T>)
+      x = g_->double_attribute(name);
+    else if constexpr (std::is_same_v<T, bool>)
+      x = g_->int_attribute(name) != 0;
+    else
+      x = static_cast<T>(g_->int_attribute(name));
+  }
+  void count(const char* name, const char* what, std::uint64_t& x, double max) {
+    const std::int64_t v = g_->int_attribute(name);
+    if (v < 0 || static_cast<double>(v) > max)
+      throw CheckpointError("checkpoint " + file_.string() + ": " + what + " " + std::to_string(v) +
+                            " is outside [0, " + power_of_ten(max) + "]");
+    x = static_cast<std::uint64_t>(v);
+  }
+  template <class T>
+  void bodies(const char* name, std::vector<T>& rows) {
+    if (!bodies_) {  // the ids: their count is the number of bodies
+      rows = get_rows<T>(name, rows_of(*g_, name));
+      bodies_ = rows.size();
+    } else {
+      rows = get_rows<T>(name, *bodies_);
+    }
+  }
+  template <class T>
+  void bodies_or_none(const char* name, std::vector<T>& rows) {
+    rows = get_rows<T>(name, rows_of(*g_, name) == 0 ? 0 : bodies_.value_or(0));
+  }
+  template <class T>
+  void rows(const char* name, std::vector<T>& rows) {
+    rows = get_rows<T>(name, rows_of(*g_, name));
+  }
+  template <class Value>
+  void history(std::vector<std::pair<contact::PairKey, Value>>& entries) {
+    const std::size_t nc = rows_of(*g_, "lo");
+    const auto lo = get<std::uint64_t>(*g_, "lo", nc), hi = get<std::uint64_t>(*g_, "hi", nc);
+    entries.clear();
+    entries.reserve(nc);
+    if constexpr (std::is_same_v<Value, contact::PlanarHistory>) {
+      const auto spring = get<double>(*g_, "spring", nc);
+      // The pairs' last normal forces (absent from checkpoints written before they were kept: NaN, which the
+      // contact stage reads as unknown, falling back to the plain velocity prediction for that one step).
+      const auto normal_force = g_->exists("normal_force")
+                                    ? get<double>(*g_, "normal_force", nc)
+                                    : std::vector<double>(nc, std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t k = 0; k < nc; ++k)
+        entries.push_back({contact::PairKey{lo[k], hi[k]}, {spring[k], normal_force[k]}});
+    } else {
+      const auto spring = get_rows<Value>("spring", nc);
+      for (std::size_t k = 0; k < nc; ++k) entries.push_back({contact::PairKey{lo[k], hi[k]}, spring[k]});
+    }
+  }
+  template <class F>
+  void group(const char* name, F&& fields) {
+    const Group sub = g_->open_group(name);
+    const Group* up = std::exchange(g_, &sub);
+    fields();
+    g_ = up;
+  }
+  template <class T, class F>
+  void optional_group(const char* name, std::optional<T>& value, F&& fields) {
+    value.reset();
+    if (!g_->exists(name)) return;
+    value.emplace();
+    group(name, [&] { fields(*value); });
+  }
+
+ private:
+  template <class T>
+  std::vector<T> get_rows(const char* name, std::size_t rows) {
+    using Row = dynamics::StateRow<T>;
+    const std::vector<typename Row::Scalar> flat = get<typename Row::Scalar>(*g_, name, rows, Row::width);
+    std::vector<T> out(rows);
+    for (std::size_t i = 0; i < rows; ++i) Row::unpack(flat.data() + i * Row::width, out[i]);
+    return out;
+  }
+  const Group* g_;
+  fs::path file_;
+  std::optional<std::size_t> bodies_;
+};
+
 }  // namespace
 
-std::string body_signature(const dynamics::World& w) {
+namespace {
+
+// The signature of either world: per body its id, motion, (a level floe's thickness,) mass and body-frame vertices.
+template <class W>
+Fnv body_hash(const W& w) {
   Fnv h;
   h.add(static_cast<std::uint64_t>(w.size()));
   for (std::size_t k = 0; k < w.size(); ++k) {
     const int i = static_cast<int>(k);
     h.add(w.id(i));
     h.add(static_cast<int>(w.motion(i)));
-    h.add(w.thickness(i));
+    if constexpr (std::is_same_v<W, dynamics::World>) h.add(w.thickness(i));
     h.add(w.mass(i));
-    for (const Vec2& v : w.shape(i).vertices()) {
-      h.add(v.x());
-      h.add(v.y());
-    }
+    for (const auto& v : w.shape(i).vertices())
+      for (Eigen::Index c = 0; c < v.size(); ++c) h.add(v[c]);
   }
+  return h;
+}
+
+}  // namespace
+
+std::string body_signature(const dynamics::World& w) {
+  Fnv h = body_hash(w);
   if (const bonds::BondSet* b = w.bonds()) {
     h.add(static_cast<std::uint64_t>(b->faces()));
     h.add(static_cast<std::uint64_t>(b->points()));
   }
   return h.hex();
 }
+
+std::string body_signature(const dynamics::SpatialWorld& w) { return body_hash(w).hex(); }
 
 fs::path checkpoint_path(const fs::path& output_dir, int frames) {
   char buf[40];
@@ -130,66 +290,22 @@ void write_checkpoint(const fs::path& file, const Checkpoint& c) {
   try {
     File f(tmp, File::Mode::exclusive);
     Group& root = f.root();
-    const dynamics::WorldState& w = c.world;
     root.set_attribute("format", kFormat);
     root.set_attribute("format_version", kFormatVersion);
+    if (c.spatial) root.set_attribute("mode", "spatial");
     root.set_attribute("kind", c.kind);
     root.set_attribute("code_version", c.code_version);
     root.set_attribute("scene_resolved", c.scene_resolved);
     root.set_attribute("body_signature", c.body_signature);
     root.set_attribute("dt", c.dt);
-    root.set_attribute("time", w.time);
-    root.set_attribute("steps", static_cast<std::int64_t>(w.steps));
     root.set_attribute("frames", static_cast<std::int64_t>(c.frames));
     root.set_attribute("next_frame", c.next_frame);
-    root.set_attribute("forces_ready", static_cast<std::int64_t>(w.forces_ready ? 1 : 0));
-    root.set_attribute("bonds_failed_last", static_cast<std::int64_t>(w.bonds_failed_last));
     put(root, "frame_times", c.frame_times);
-
-    Group g = root.create_group("world");
-    put(g, "ids", w.ids);
-    put2(g, "position", w.position);
-    put(g, "yaw", w.yaw);
-    put2(g, "velocity", w.velocity);
-    put(g, "omega", w.omega);
-    put2(g, "force", w.force);
-    put(g, "torque", w.torque);
-    put2(g, "external_force", w.external_force);
-    put(g, "external_torque", w.external_torque);
-    std::vector<double> loads;
-    loads.reserve(10 * w.drift_load.size());
-    for (const forcing::DriftLoad& d : w.drift_load)
-      for (double v : {d.force.x(), d.force.y(), d.torque, d.dxx, d.dxy, d.dyy, d.dxw, d.dyw, d.dww, d.mf})
-        loads.push_back(v);
-    g.write_dataset<double>("drift_load", std::span<const double>(loads), Dims{w.drift_load.size(), 10});
-    put2(g, "lin_force", w.lin_force);
-    put(g, "lin_torque", w.lin_torque);
-
-    Group cg = root.create_group("contacts");
-    std::vector<std::uint64_t> lo, hi;
-    std::vector<double> spring, normal_force;
-    for (const auto& [key, value] : w.contact_history) {
-      lo.push_back(key.lo);
-      hi.push_back(key.hi);
-      spring.push_back(value.spring);
-      normal_force.push_back(value.normal_force);
-    }
-    put(cg, "lo", lo);
-    put(cg, "hi", hi);
-    put(cg, "spring", spring);
-    put(cg, "normal_force", normal_force);
-
-    if (w.bonds) {
-      Group b = root.create_group("bonds");
-      put(b, "face_intact", w.bonds->face_intact);
-      put(b, "face_points_left", w.bonds->face_points_left);
-      put(b, "face_broken_time", w.bonds->face_broken_time);
-      put(b, "point_intact", w.bonds->point_intact);
-      put(b, "point_sigma", w.bonds->point_sigma);
-      put(b, "point_tau", w.bonds->point_tau);
-      b.set_attribute("max_sigma", w.bonds->max_sigma);
-      b.set_attribute("max_tau", w.bonds->max_tau);
-    }
+    StateWriter state(root);
+    if (c.spatial)
+      visit_fields(state, *c.spatial);
+    else
+      visit_fields(state, c.world);
     if (c.channel) {
       Group ch = root.create_group("channel");
       put(ch, "through", c.channel->through);
@@ -208,6 +324,39 @@ void write_checkpoint(const fs::path& file, const Checkpoint& c) {
   io::commit_file_atomic(tmp, file);
 }
 
+namespace {
+
+// The header of a checkpoint: what it is, its kind, scene and schedule (every count checked before anything is
+// sized by it: a checkpoint is input like any other).
+void read_header(const Group& root, const fs::path& file, Checkpoint& c) {
+  if (!root.has_attribute("format") || root.string_attribute("format") != kFormat)
+    throw CheckpointError("checkpoint " + file.string() + ": not a PolyFloe checkpoint (no format = '" +
+                          std::string(kFormat) + "' attribute)");
+  const std::int64_t version = root.int_attribute("format_version");
+  if (version != kFormatVersion)
+    throw CheckpointError("checkpoint " + file.string() + ": format version " + std::to_string(version) +
+                          "; this program reads version " + std::to_string(kFormatVersion));
+  const std::string mode = root.has_attribute("mode") ? root.string_attribute("mode") : "planar";
+  if (mode != "planar" && mode != "spatial")
+    throw CheckpointError("checkpoint " + file.string() + ": unknown mode '" + mode + "' (planar or spatial)");
+  if (mode == "spatial") c.spatial.emplace();
+  c.kind = root.string_attribute("kind");
+  c.code_version = root.string_attribute("code_version");
+  c.scene_resolved = root.string_attribute("scene_resolved");
+  c.body_signature = root.string_attribute("body_signature");
+  c.dt = root.double_attribute("dt");
+  c.next_frame = root.double_attribute("next_frame");
+  const std::int64_t frames = root.int_attribute("frames");
+  if (frames < 0 || static_cast<double>(frames) > scene::OutputSettings::kMaxFrames)
+    throw CheckpointError("checkpoint " + file.string() + ": frame count " + std::to_string(frames) +
+                          " is outside [0, " +
+                          std::to_string(static_cast<long long>(scene::OutputSettings::kMaxFrames)) + "]");
+  c.frames = static_cast<int>(frames);
+  c.frame_times = get<double>(root, "frame_times", static_cast<std::size_t>(c.frames));
+}
+
+}  // namespace
+
 Checkpoint read_checkpoint(const fs::path& file) {
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) throw CheckpointError("checkpoint " + file.string() + ": no such file");
@@ -215,102 +364,18 @@ Checkpoint read_checkpoint(const fs::path& file) {
   try {
     const File f(file, File::Mode::read_only);
     const Group& root = f.root();
-    if (!root.has_attribute("format") || root.string_attribute("format") != kFormat)
-      throw CheckpointError("checkpoint " + file.string() + ": not a PolyFloe checkpoint (no format = '" +
-                            std::string(kFormat) + "' attribute)");
-    const std::int64_t version = root.int_attribute("format_version");
-    if (version != kFormatVersion)
-      throw CheckpointError("checkpoint " + file.string() + ": format version " + std::to_string(version) +
-                            "; this program reads version " + std::to_string(kFormatVersion));
-    c.kind = root.string_attribute("kind");
-    c.code_version = root.string_attribute("code_version");
-    c.scene_resolved = root.string_attribute("scene_resolved");
-    c.body_signature = root.string_attribute("body_signature");
-    c.dt = root.double_attribute("dt");
-    c.frames = static_cast<int>(root.int_attribute("frames"));
-    c.next_frame = root.double_attribute("next_frame");
-    // Counts are checked before anything is sized by them: a checkpoint is input like any other.
-    const std::int64_t frames = root.int_attribute("frames");
-    if (frames < 0 || static_cast<double>(frames) > scene::OutputSettings::kMaxFrames)
-      throw CheckpointError("checkpoint " + file.string() + ": frame count " + std::to_string(frames) +
-                            " is outside [0, " +
-                            std::to_string(static_cast<long long>(scene::OutputSettings::kMaxFrames)) + "]");
-    c.frames = static_cast<int>(frames);
-    c.frame_times = get<double>(root, "frame_times", static_cast<std::size_t>(c.frames));
-    dynamics::WorldState& w = c.world;
-    w.time = root.double_attribute("time");
-    const std::int64_t steps = root.int_attribute("steps");
-    if (steps < 0 || static_cast<double>(steps) > scene::kMaxSteps)
-      throw CheckpointError("checkpoint " + file.string() + ": step count " + std::to_string(steps) +
-                            " is outside [0, 1e12]");
-    w.steps = static_cast<std::uint64_t>(steps);
-    if (!(w.time >= 0.0) || !std::isfinite(w.time))
-      throw CheckpointError("checkpoint " + file.string() + ": time " + std::to_string(w.time) + " s is not a time");
-    w.forces_ready = root.int_attribute("forces_ready") != 0;
-    w.bonds_failed_last = static_cast<int>(root.int_attribute("bonds_failed_last"));
-
-    const Group g = root.open_group("world");
-    const std::size_t n = rows_of(g, "ids");
-    w.ids = get<std::uint64_t>(g, "ids", n);
-    w.position = unflat(get<double>(g, "position", n, 2));
-    w.yaw = get<double>(g, "yaw", n);
-    w.velocity = unflat(get<double>(g, "velocity", n, 2));
-    w.omega = get<double>(g, "omega", n);
-    w.force = unflat(get<double>(g, "force", n, 2));
-    w.torque = get<double>(g, "torque", n);
-    w.external_force = unflat(get<double>(g, "external_force", n, 2));
-    w.external_torque = get<double>(g, "external_torque", n);
-    const std::size_t nd = rows_of(g, "drift_load");
-    const std::vector<double> loads = get<double>(g, "drift_load", nd, 10);
-    w.drift_load.resize(nd);
-    for (std::size_t i = 0; i < nd; ++i) {
-      const double* v = loads.data() + 10 * i;
-      forcing::DriftLoad& d = w.drift_load[i];
-      d.force = {v[0], v[1]};
-      d.torque = v[2];
-      d.dxx = v[3];
-      d.dxy = v[4];
-      d.dyy = v[5];
-      d.dxw = v[6];
-      d.dyw = v[7];
-      d.dww = v[8];
-      d.mf = v[9];
-    }
-    const std::size_t nl = rows_of(g, "lin_force");
-    w.lin_force = unflat(get<double>(g, "lin_force", nl, 2));
-    w.lin_torque = get<double>(g, "lin_torque", nl);
-
-    const Group cg = root.open_group("contacts");
-    const std::size_t nc = rows_of(cg, "lo");
-    const auto lo = get<std::uint64_t>(cg, "lo", nc), hi = get<std::uint64_t>(cg, "hi", nc);
-    const auto spring = get<double>(cg, "spring", nc);
-    // The pairs' last normal forces (absent from checkpoints written before they were kept: NaN, which the
-    // contact stage reads as unknown, falling back to the plain velocity prediction for that one step).
-    const auto normal_force = cg.exists("normal_force")
-                                  ? get<double>(cg, "normal_force", nc)
-                                  : std::vector<double>(nc, std::numeric_limits<double>::quiet_NaN());
-    w.contact_history.reserve(nc);
-    for (std::size_t k = 0; k < nc; ++k)
-      w.contact_history.push_back({contact::PairKey{lo[k], hi[k]}, {spring[k], normal_force[k]}});
-
-    if (root.exists("bonds")) {
-      const Group b = root.open_group("bonds");
-      bonds::BondState s;
-      const std::size_t nf = rows_of(b, "face_intact"), np = rows_of(b, "point_intact");
-      s.face_intact = get<std::uint8_t>(b, "face_intact", nf);
-      s.face_points_left = get<std::int32_t>(b, "face_points_left", nf);
-      s.face_broken_time = get<double>(b, "face_broken_time", nf);
-      s.point_intact = get<std::uint8_t>(b, "point_intact", np);
-      s.point_sigma = get<double>(b, "point_sigma", np);
-      s.point_tau = get<double>(b, "point_tau", np);
-      s.max_sigma = b.double_attribute("max_sigma");
-      s.max_tau = b.double_attribute("max_tau");
-      w.bonds = std::move(s);
-    }
+    read_header(root, file, c);
+    StateReader state(root, file);
+    if (c.spatial)
+      visit_fields(state, *c.spatial);
+    else
+      visit_fields(state, c.world);
+    if (!(c.time() >= 0.0) || !std::isfinite(c.time()))
+      throw CheckpointError("checkpoint " + file.string() + ": time " + std::to_string(c.time()) + " s is not a time");
     if (root.exists("channel")) {
       const Group ch = root.open_group("channel");
       ChannelMonitor::State s;
-      s.through = get<std::uint8_t>(ch, "through", n);
+      s.through = get<std::uint8_t>(ch, "through", c.world.ids.size());
       s.last_time = ch.double_attribute("last_time");
       s.last_flow_time = ch.double_attribute("last_flow_time");
       s.passed = ch.double_attribute("passed");
@@ -346,14 +411,19 @@ fs::path find_checkpoint(const fs::path& path) {
   return best;
 }
 
-void check_restart(const Checkpoint& c, const fs::path& file, const dynamics::World& world) {
+namespace {
+
+// check_restart for a world whose signature is `sig` and whose kind (planar or spatial) is `spatial`.
+void check_restart(const Checkpoint& c, const fs::path& file, const std::string& sig, bool spatial) {
   const std::string where = "checkpoint " + file.string() + ": ";
   if (c.kind == "unstable")
     throw CheckpointError(where +
                           "holds the state at which the run became unstable (for inspection); restart "
                           "from an earlier checkpoint_NNNNNN.h5 in the same folder, with a smaller time step");
   if (c.kind != "frame" && c.kind != "final") throw CheckpointError(where + "unknown kind '" + c.kind + "'");
-  const std::string sig = body_signature(world);
+  if (c.spatial.has_value() != spatial)
+    throw CheckpointError(where + "is the checkpoint of a " + (c.spatial ? "spatial" : "planar") +
+                          " run; the scene is " + (spatial ? "spatial" : "planar"));
   if (c.body_signature != sig)
     throw CheckpointError(where + "was written for other bodies than the scene builds (signature " + c.body_signature +
                           ", the scene's " + sig +
@@ -365,28 +435,33 @@ void check_restart(const Checkpoint& c, const fs::path& file, const dynamics::Wo
   if (!std::isfinite(c.next_frame)) throw CheckpointError(where + "has an invalid next frame time");
   for (std::size_t k = 0; k < c.frame_times.size(); ++k)
     if (!std::isfinite(c.frame_times[k]) || (k > 0 && !(c.frame_times[k] > c.frame_times[k - 1])) ||
-        c.frame_times[k] > c.world.time)
+        c.frame_times[k] > c.time())
       throw CheckpointError(where + "its frame times are not increasing times up to the checkpoint's " +
-                            std::to_string(c.world.time) + " s (frame " + std::to_string(k) + ")");
-  const dynamics::WorldState& w = c.world;
-  auto finite = [](const auto& v) {
-    return std::all_of(v.begin(), v.end(), [](const auto& x) {
-      if constexpr (std::is_arithmetic_v<std::decay_t<decltype(x)>>)
-        return std::isfinite(x);
-      else
-        return x.allFinite();
-    });
+                            std::to_string(c.time()) + " s (frame " + std::to_string(k) + ")");
+  auto bodies = [&](const auto& state) {
+    if (const std::string problem = dynamics::body_row_problem(state, true); !problem.empty())
+      throw CheckpointError(where + "holds a body state that is not finite or not one per body (" + problem +
+                            "); restart from an earlier checkpoint");
+    // Beyond 10^10 m the floes' own extent rounds away against their position: no run gets there.
+    for (const auto& p : state.position)
+      if (!(p.cwiseAbs().maxCoeff() <= 1e10))
+        throw CheckpointError(where + "holds a body at " + std::to_string(p.x()) + ", " + std::to_string(p.y()) +
+                              " m, beyond the 1e10 m any run reaches");
   };
-  if (!finite(w.position) || !finite(w.yaw) || !finite(w.velocity) || !finite(w.omega) || !finite(w.force) ||
-      !finite(w.torque))
-    throw CheckpointError(where +
-                          "holds a body state that is not finite (NaN or infinite position, velocity or "
-                          "force); restart from an earlier checkpoint");
-  // Beyond 10^10 m the floes' own extent rounds away against their position: no run gets there.
-  for (const Vec2& p : w.position)
-    if (!(p.cwiseAbs().maxCoeff() <= 1e10))
-      throw CheckpointError(where + "holds a body at " + std::to_string(p.x()) + ", " + std::to_string(p.y()) +
-                            " m, beyond the 1e10 m any run reaches");
+  if (c.spatial)
+    bodies(*c.spatial);
+  else
+    bodies(c.world);
+}
+
+}  // namespace
+
+void check_restart(const Checkpoint& c, const fs::path& file, const dynamics::World& world) {
+  check_restart(c, file, body_signature(world), false);
+}
+
+void check_restart(const Checkpoint& c, const fs::path& file, const dynamics::SpatialWorld& world) {
+  check_restart(c, file, body_signature(world), true);
 }
 
 }  // namespace polyfloe::run

@@ -1,4 +1,4 @@
-// The planar driver's outputs on their schedule (run/run_outputs.h).
+// A run's outputs on their schedule (run/run_outputs.h).
 #include "run/run_outputs.h"
 
 #include <algorithm>
@@ -47,9 +47,10 @@ std::vector<io::ExtraSeries> channel_series() {
 
 }  // namespace
 
-RunOutputs::RunOutputs(const scene::Scene& scene, const dynamics::World& world, const RunOptions& options, double dt,
-                       const std::string& signature, const std::optional<io::ImageGrid>& grid,
-                       const std::optional<Checkpoint>& restart, const fs::path& restart_results)
+template <class W>
+BasicRunOutputs<W>::BasicRunOutputs(const scene::Scene& scene, const W& world, const RunOptions& options, double dt,
+                                    const std::string& signature, const std::optional<io::ImageGrid>& grid,
+                                    const std::optional<Checkpoint>& restart, const fs::path& restart_results)
     : scene_(scene),
       options_(options),
       dt_(dt),
@@ -66,11 +67,15 @@ RunOutputs::RunOutputs(const scene::Scene& scene, const dynamics::World& world, 
   io::write_file_atomic(out / "scene.resolved.yaml", scene::resolved_yaml(scene_));
 
   const double rho_w = scene_.world.drift.water_density;
-  if (scene_.output.vtk) vtk_ = std::make_unique<io::VtkSeriesWriter>(out, scene_.output.contacts, rho_w, &manifest);
   std::vector<io::ExtraSeries> extra;
-  if (scene_.channel) {
-    channel_.emplace(*scene_.channel, world);
-    extra = channel_series();
+  if constexpr (kPlanar) {
+    if (scene_.output.vtk) vtk_ = std::make_unique<VtkWriter>(out, scene_.output.contacts, rho_w, &manifest);
+    if (scene_.channel) {
+      channel_.emplace(*scene_.channel, world);
+      extra = channel_series();
+    }
+  } else {
+    if (scene_.output.vtk) vtk_ = std::make_unique<VtkWriter>(out, scene_.output.contacts, &manifest);
   }
   if (restart && scene_.output.hdf5) {
     adopt_from_ = restart_results;
@@ -83,30 +88,41 @@ RunOutputs::RunOutputs(const scene::Scene& scene, const dynamics::World& world, 
   if (scene_.output.hdf5) {
     io::RunInfo info{scene_.source_path, scene_.source_text, options_.version, join(scene_.overrides, "\n"), dt};
     manifest.record("results.h5");
-    manifest.record("results.xmf");
-    h5_ = std::make_unique<io::Hdf5Writer>(out / "results.h5", world, info, rho_w, extra);
+    if constexpr (kPlanar) {
+      manifest.record("results.xmf");
+      h5_ = std::make_unique<Hdf5Writer>(out / "results.h5", world, info, rho_w, extra);
+    } else {
+      h5_ = std::make_unique<Hdf5Writer>(out / "results.h5", world, info);
+    }
   }
   const double interval = scene_.output.interval;
-  if (grid) {
-    velocity_grid_.emplace(*grid, interval / scene_.output.velocity_grid.samples_per_frame,
-                           scene_.output.vtk ? out : fs::path(), h5_.get(), &manifest);
-  }
+  if constexpr (kPlanar)
+    if (grid)
+      velocity_grid_.emplace(*grid, interval / scene_.output.velocity_grid.samples_per_frame,
+                             scene_.output.vtk ? out : fs::path(), h5_.get(), &manifest);
   schedule_ = FrameClock::make(interval, scene_.time.duration, dt);
   if (schedule_.every_step) std::fprintf(stderr, "%s\n", schedule_.note(dt).c_str());
 }
 
-RunOutputs::~RunOutputs() {
+template <class W>
+BasicRunOutputs<W>::~BasicRunOutputs() {
   // results.xmf describes the frames results.h5 holds: written with each checkpoint and at the end, and also when
   // the run stops on an exception (unstable, the ice left the field, ...).
   if (!started_ || h5_ == nullptr || std::uncaught_exceptions() == 0) return;
   try {
-    h5_->write_xdmf(folder_.path() / "results.xmf");
+    write_xdmf();
   } catch (const std::exception&) {
     // the run's own error is the one to report
   }
 }
 
-void RunOutputs::start(dynamics::World& world, const std::optional<Checkpoint>& restart) {
+template <class W>
+void BasicRunOutputs<W>::write_xdmf() {
+  if constexpr (kPlanar) h5_->write_xdmf(folder_.path() / "results.xmf");
+}
+
+template <class W>
+void BasicRunOutputs<W>::start(W& world, const std::optional<Checkpoint>& restart) {
   if (restart) {
     const Checkpoint& c = *restart;
     frames_ = c.frames;
@@ -118,37 +134,50 @@ void RunOutputs::start(dynamics::World& world, const std::optional<Checkpoint>& 
       std::error_code ec;
       fs::remove(folder_.path() / kInterruptedResults, ec);  // ... so the interrupted run's file can go
     }
-    if (vtk_) vtk_->resume(frame_times_, world.bonds() != nullptr);
-    if (velocity_grid_) velocity_grid_->resume(*c.next_sample, frame_times_);
-    if (channel_) channel_->restore(*c.channel);
+    if constexpr (kPlanar) {
+      if (vtk_) vtk_->resume(frame_times_, world.bonds() != nullptr);
+      if (velocity_grid_) velocity_grid_->resume(*c.next_sample, frame_times_);
+      if (channel_) channel_->restore(*c.channel);
+    } else {
+      if (vtk_) vtk_->resume(frame_times_);
+    }
   } else {
     if (h5_) h5_->start_swmr();
-    world.compute_forces(0.0);
+    // the first frame's forces and contacts (a spatial world's contact law reads the step)
+    world.compute_forces(kPlanar ? 0.0 : dt_);
     write_frame(world);
   }
   started_ = true;
 }
 
-void RunOutputs::write_frame(const dynamics::World& world) {
-  extra_values_.clear();
-  if (channel_) {
-    const ChannelSample c = channel_->sample(world);
-    extra_values_ = {c.area_flux,         c.area_passed,       c.upstream_area,
-                     c.funnel_area,       c.funnel_mean_speed, static_cast<double>(c.strait_floes),
-                     c.strait_mean_speed, c.jammed ? 1.0 : 0.0};
+template <class W>
+void BasicRunOutputs<W>::write_frame(const W& world) {
+  if constexpr (kPlanar) {
+    extra_values_.clear();
+    if (channel_) {
+      const ChannelSample c = channel_->sample(world);
+      extra_values_ = {c.area_flux,         c.area_passed,       c.upstream_area,
+                       c.funnel_area,       c.funnel_mean_speed, static_cast<double>(c.strait_floes),
+                       c.strait_mean_speed, c.jammed ? 1.0 : 0.0};
+    }
+    if (vtk_) vtk_->write_frame(world);
+    if (velocity_grid_) velocity_grid_->write_frame(world);
+    if (h5_) h5_->write_frame(world, extra_values_);
+  } else {
+    if (vtk_) vtk_->write_frame(world);
+    if (h5_) h5_->write_frame(world);
   }
-  if (vtk_) vtk_->write_frame(world);
-  if (velocity_grid_) velocity_grid_->write_frame(world);
-  if (h5_) h5_->write_frame(world, extra_values_);
   ++frames_;
   frame_times_.push_back(world.time());
 }
 
 // Frames land on every multiple of the output interval and on the end time (FrameClock); checkpoints at every
 // `checkpoint.every`-th frame and at the end.
-void RunOutputs::after_step(const dynamics::World& world) {
+template <class W>
+void BasicRunOutputs<W>::after_step(const W& world) {
   const bool last = schedule_.at_end(world.time());
-  if (velocity_grid_) velocity_grid_->after_step(world);
+  if constexpr (kPlanar)
+    if (velocity_grid_) velocity_grid_->after_step(world);
   if (!schedule_.frame_due(world.time())) return;
   schedule_.frame_written(world.time());
   write_frame(world);
@@ -159,10 +188,11 @@ void RunOutputs::after_step(const dynamics::World& world) {
   }
 }
 
-void RunOutputs::snapshot_results() {
+template <class W>
+void BasicRunOutputs<W>::snapshot_results() {
   const fs::path& out = folder_.path();
   h5_->flush();
-  h5_->write_xdmf(out / "results.xmf");
+  write_xdmf();
   const fs::path snapshot = out / kResultsSnapshot;
   folder_.manifest().record("checkpoints/");
   folder_.manifest().record(kResultsSnapshot);
@@ -172,7 +202,8 @@ void RunOutputs::snapshot_results() {
   io::commit_file_atomic(tmp, snapshot);
 }
 
-void RunOutputs::checkpoint(const dynamics::World& world, const char* kind, const fs::path& file) {
+template <class W>
+void BasicRunOutputs<W>::checkpoint(const W& world, const char* kind, const fs::path& file) {
   if (h5_) snapshot_results();  // first: it then holds at least the frames of every checkpoint on disk
   Checkpoint c;
   c.kind = kind;
@@ -183,7 +214,10 @@ void RunOutputs::checkpoint(const dynamics::World& world, const char* kind, cons
   c.frames = frames_;
   c.frame_times = frame_times_;
   c.next_frame = schedule_.next;
-  c.world = world.state();
+  if constexpr (kPlanar)
+    c.world = world.state();
+  else
+    c.spatial = world.state();
   if (channel_) c.channel = channel_->state();
   if (velocity_grid_) c.next_sample = velocity_grid_->next_sample();
   folder_.manifest().record("checkpoints/");
@@ -191,7 +225,8 @@ void RunOutputs::checkpoint(const dynamics::World& world, const char* kind, cons
   write_checkpoint(file, c);
 }
 
-std::string RunOutputs::save_unstable(const dynamics::World& world) {
+template <class W>
+std::string BasicRunOutputs<W>::save_unstable(const W& world) {
   if (scene_.output.checkpoint.every <= 0) return "";
   const fs::path file = folder_.path() / "checkpoints" / "unstable.h5";
   std::string message;
@@ -214,8 +249,12 @@ std::string RunOutputs::save_unstable(const dynamics::World& world) {
   return message;
 }
 
-void RunOutputs::finish() {
-  if (h5_) h5_->write_xdmf(folder_.path() / "results.xmf");
+template <class W>
+void BasicRunOutputs<W>::finish() {
+  if (h5_) write_xdmf();
 }
+
+template class BasicRunOutputs<dynamics::World>;
+template class BasicRunOutputs<dynamics::SpatialWorld>;
 
 }  // namespace polyfloe::run

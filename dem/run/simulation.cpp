@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <exception>
 #include <sstream>
+#include <type_traits>
 
 #include "contact/contact_law.h"
 #include "formats/atomic_file.h"
@@ -49,96 +50,6 @@ GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const 
 }
 
 }  // namespace
-
-void check_contact_resolution(const dynamics::World& w, double dt) {
-  std::ostringstream why;
-  const dynamics::World::ContactResolution r = w.shortest_active_contact();
-  if (r.a >= 0 && r.duration < dynamics::kMinStepsPerContact * dt) {
-    why << "the contact between bodies " << w.id(r.a) << " and " << w.id(r.b) << " at t = " << w.time() << " s (step "
-        << w.step_count() << ") has an impact speed of about " << r.impact_speed << " m/s, so it lasts " << r.duration
-        << " s: only " << r.duration / dt << " time steps of dt = " << dt << " s (at least "
-        << dynamics::kMinStepsPerContact << " are needed, 40 for accuracy). Set run.reference_speed to "
-        << r.impact_speed << " (the automatic time step then resolves such impacts), or run.dt to " << r.duration / 40.0
-        << ".";
-    throw InstabilityError(why.str());
-  }
-}
-
-namespace {
-
-void check_deepest_overlap(const dynamics::World& w, double dt) {
-  // The deepest overlap against half the smaller floe's radius (tracked by the World in its contact sum).
-  if (const dynamics::World::DeepestOverlap& c = w.deepest_overlap(); c.ratio > 1.0) {
-    std::ostringstream why;
-    why << "bodies " << w.id(c.a) << " and " << w.id(c.b) << " overlap by " << c.depth
-        << " m (more than half the smaller floe's radius, " << c.limit << " m) at t = " << w.time() << " s (step "
-        << w.step_count() << "). The contact is too soft or the time step too large for the impact speeds: set "
-        << "run.dt to " << 0.25 * dt << ", or raise run.reference_speed or run.steps_per_contact.";
-    throw InstabilityError(why.str());
-  }
-}
-
-}  // namespace
-
-void check_stability(const dynamics::World& w, double dt, double reference_speed) {
-  check_contact_resolution(w, dt);
-  // Runaway: far faster than anything the forcing or the impacts can produce.
-  const double speed_limit = std::max(50.0, 20.0 * reference_speed);
-  const double energy_limit =
-      0.5 * w.dynamic_mass() * 100.0 * std::max(1.0, reference_speed) * std::max(1.0, reference_speed);
-  // The World's summary of the step (gathered in its final kick) clears the bodies at once; only a state it
-  // cannot clear is searched body by body below, for the body to name (and decides by itself).
-  if (const dynamics::World::MotionSummary& s = w.motion_summary();
-      s.all_finite && std::sqrt(s.max_speed2) + s.max_spin_speed <= speed_limit && s.energy <= energy_limit) {
-    check_deepest_overlap(w, dt);
-    return;
-  }
-  const auto pos = w.positions();
-  const auto vel = w.velocities();
-  const auto om = w.angular_velocities();
-  std::ostringstream why;
-  auto advice = [&] {
-    why << " at t = " << w.time() << " s (step " << w.step_count() << "). The time step dt = " << dt
-        << " s is probably too large for the contact stiffness: set run.dt to " << 0.25 * dt
-        << " or raise run.steps_per_contact (e.g. x4), or lower ice.youngs_modulus.";
-    throw InstabilityError(why.str());
-  };
-  // Runaway energy: the kinetic energy of the dynamic bodies beyond what they would have all moving at 10 x the
-  // reference speed (an instability that grows in many bodies at once, before any one reaches the speed limit).
-  double energy = 0.0, worst = 0.0;
-  std::size_t worst_body = 0;
-  for (std::size_t i = 0; i < w.size(); ++i) {
-    const int b = static_cast<int>(i);
-    const bool dynamic = w.motion(b) == dynamics::Motion::dynamic;
-    const bool finite = std::isfinite(pos[i].x()) && std::isfinite(pos[i].y()) && std::isfinite(vel[i].x()) &&
-                        std::isfinite(vel[i].y()) && std::isfinite(om[i]) && std::isfinite(w.yaws()[i]);
-    const double speed = finite ? vel[i].norm() + std::abs(om[i]) * w.shape(b).circumradius() : 0.0;
-    if (!finite) {
-      why << "body " << w.id(b) << " has a non-finite state (NaN or Inf)";
-    } else if (dynamic && speed > speed_limit) {  // kinematic bodies move as the scene prescribes
-      why << "body " << w.id(b) << " moves at " << speed << " m/s (limit " << speed_limit
-          << " m/s = max(50, 20 x reference speed))";
-    } else {
-      if (dynamic) {
-        const double e = 0.5 * w.mass(b) * vel[i].squaredNorm() + 0.5 * w.inertia(b) * om[i] * om[i];
-        energy += e;
-        if (e > worst) {
-          worst = e;
-          worst_body = i;
-        }
-      }
-      continue;
-    }
-    advice();
-  }
-  if (energy > energy_limit) {
-    why << "the kinetic energy of the ice, " << energy << " J, exceeds " << energy_limit
-        << " J (every floe at 10 x the reference speed; the most energetic is body "
-        << w.id(static_cast<int>(worst_body)) << " with " << worst << " J): runaway energy";
-    advice();
-  }
-  check_deepest_overlap(w, dt);
-}
 
 namespace {
 
@@ -181,17 +92,23 @@ void readable_frames(const io::hdf5::Group& g, std::uint64_t frames) {
 
 }  // namespace
 
-Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options,
-                       std::optional<Checkpoint> restart, const std::filesystem::path& restart_file)
+template <class W>
+constexpr bool kPlanar = std::is_same_v<W, dynamics::World>;
+
+template <class W>
+BasicSimulation<W>::BasicSimulation(const scene::Scene& scene, W world, const RunOptions& options,
+                                    std::optional<Checkpoint> restart, const std::filesystem::path& restart_file)
     : scene_(scene), world_(std::move(world)), options_(options) {
-  namespace fs = std::filesystem;
   world_.set_threads(options_.threads);
   // From the world as the scene builds it (a restart's bonds may since have broken, which would change the step).
   dt_ = scene::time_step(scene_, world_);
+  reference_speed_ = scene::reference_speed(scene_);
   signature_ = body_signature(world_);
-  const scene::VelocityGridSettings& grid_settings = scene_.output.velocity_grid;
-  if (grid_settings.enabled && (scene_.output.vtk || scene_.output.hdf5))
-    grid_geometry_ = velocity_grid_geometry(grid_settings, world_);  // may refuse before any output exists
+  if constexpr (kPlanar<W>) {
+    const scene::VelocityGridSettings& grid_settings = scene_.output.velocity_grid;
+    if (grid_settings.enabled && (scene_.output.vtk || scene_.output.hdf5))
+      grid_geometry_ = velocity_grid_geometry(grid_settings, world_);  // may refuse before any output exists
+  }
   if (!restart) return;
 
   const Checkpoint& c = *restart;
@@ -201,12 +118,33 @@ Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const R
     throw CheckpointError(where +
                           "the scene's output settings differ from those of the interrupted run; a restart "
                           "continues its output series, so they must be the same (output.checkpoint may change)");
+  try {  // the state first: what is wrong with it is wrong whatever folder the restart is given
+    if constexpr (kPlanar<W>)
+      world_.restore(c.world);
+    else
+      world_.restore(*c.spatial);
+  } catch (const std::invalid_argument& e) {
+    throw CheckpointError(where + e.what());
+  }
+  check_restart_outputs(c, restart_file);
+  if (scene_.channel && !c.channel)
+    throw CheckpointError(where + "has no channel monitor state; the scene has a channel");
+  if (grid_geometry_ && !c.next_sample)
+    throw CheckpointError(where + "has no velocity grid state; the scene has a grid");
+  restart_ = std::move(restart);
+}
+
+// The interrupted run's outputs that a restart continues: the results holding the checkpoint's frames (the file a
+// killed restart left aside, else results.h5, else the copy taken with the checkpoints, for a results.h5 the kill
+// left unreadable), and the VTK frame of the checkpoint.
+template <class W>
+void BasicSimulation<W>::check_restart_outputs(const Checkpoint& c, const std::filesystem::path& restart_file) {
+  namespace fs = std::filesystem;
+  const std::string where = "checkpoint " + restart_file.string() + ": ";
   const fs::path dir = options_.output_dir;
   std::error_code ec;
   const int frames = c.frames;
   if (scene_.output.hdf5) {
-    // The interrupted run's frames: from the file a killed restart left aside, else results.h5, else the copy
-    // taken with the checkpoints (for a results.h5 the kill left unreadable).
     std::string why;
     for (const fs::path& previous : {dir / kInterruptedResults, dir / "results.h5", dir / kResultsSnapshot}) {
       if (!fs::exists(previous, ec)) continue;
@@ -239,35 +177,31 @@ Simulation::Simulation(const scene::Scene& scene, dynamics::World world, const R
     }
   }
   if (scene_.output.vtk) {
-    char name[32];
-    std::snprintf(name, sizeof name, "floes/floes_%06d.vtp", frames - 1);
+    char name[40];
+    if constexpr (kPlanar<W>)
+      std::snprintf(name, sizeof name, "floes/floes_%06d.vtp", frames - 1);
+    else
+      std::snprintf(name, sizeof name, "bodies/bodies_%06d.vtp", frames - 1);
     if (!fs::exists(dir / name, ec))
       throw CheckpointError(where + "the interrupted run's frame " + (dir / name).string() + " is missing");
   }
-  try {
-    world_.restore(c.world);
-  } catch (const std::invalid_argument& e) {
-    throw CheckpointError(where + e.what());
-  }
-  if (scene_.channel && !c.channel)
-    throw CheckpointError(where + "has no channel monitor state; the scene has a channel");
-  if (grid_geometry_ && !c.next_sample)
-    throw CheckpointError(where + "has no velocity grid state; the scene has a grid");
-  restart_ = std::move(restart);
 }
 
 namespace {
 
 // Where the step's time went (polyfloe run --profile), on stderr.
-void print_profile(const dynamics::World& world) {
-  const dynamics::StepProfile& p = world.profile();
+void print_profile(const dynamics::StepProfile& p, std::size_t bodies) {
   const double total = p.integrate + p.shapes + p.broad + p.narrow_and_law + p.forcing + p.bonds;
-  const double per = 1e6 / (static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world.size());
+  const double per = 1e6 / (static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * static_cast<double>(bodies));
   std::fprintf(stderr,
                "profile (us per body-step): integrate %.3f, shapes + prediction %.3f, broad phase %.3f, "
                "narrow phase + law %.3f, drift forces %.3f, bonds %.3f; total %.3f (%zu bodies, %llu steps)\n",
                p.integrate * per, p.shapes * per, p.broad * per, p.narrow_and_law * per, p.forcing * per, p.bonds * per,
-               total * per, world.size(), static_cast<unsigned long long>(p.steps));
+               total * per, bodies, static_cast<unsigned long long>(p.steps));
+}
+
+void print_contact_search(const dynamics::World& world) {
+  const dynamics::StepProfile& p = world.profile();
   const std::uint64_t builds = world.neighbour_list_builds();
   const double body_steps = static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * world.size();
   std::fprintf(stderr,
@@ -282,23 +216,37 @@ void print_profile(const dynamics::World& world) {
 
 }  // namespace
 
-RunSummary Simulation::run() {
+template <class W>
+void BasicSimulation<W>::guard() {
+  // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check
+  // costs a few ns per body against ~200 ns per body for the step.
+  if constexpr (kPlanar<W>) {
+    check_stability(world_, dt_, reference_speed_);
+  } else {
+    check_stability(world_, dt_);
+    if (!world_.contacts().empty()) {
+      if (!summary_.first_contact) summary_.first_contact = world_.time();
+      ++summary_.contact_steps;
+    }
+  }
+}
+
+template <class W>
+RunSummary BasicSimulation<W>::run() {
   using clock = std::chrono::steady_clock;
   const auto wall0 = clock::now();
-  const double v_ref = scene::reference_speed(scene_);
-  RunOutputs outputs(scene_, world_, options_, dt_, signature_, grid_geometry_, restart_, restart_results_);
+  BasicRunOutputs<W> outputs(scene_, world_, options_, dt_, signature_, grid_geometry_, restart_, restart_results_);
   outputs.start(world_, restart_);
   const std::uint64_t first_step = world_.step_count();
   io::Progress progress(scene_.time.duration, options_.interactive, stderr, first_step);
-  const double start_time = world_.time();
+  summary_ = RunSummary{};
+  summary_.start_time = world_.time();
 
   // Steps of dt, landing on every frame time and on the end time (FrameClock).
   try {
     while (!outputs.at_end(world_.time())) {
       world_.step(outputs.step(world_.time()));
-      // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check
-      // costs a few ns per body against ~200 ns per body for the step.
-      check_stability(world_, dt_, v_ref);
+      guard();
       outputs.after_step(world_);
       progress.update(world_.time(), world_.step_count());
     }
@@ -308,9 +256,8 @@ RunSummary Simulation::run() {
   progress.finish(world_.time(), world_.step_count());
   outputs.finish();
 
-  RunSummary s;
+  RunSummary& s = summary_;
   s.steps = world_.step_count() - first_step;
-  s.start_time = start_time;
   s.simulated = world_.time();
   s.wall = std::chrono::duration<double>(clock::now() - wall0).count();
   s.dt = dt_;
@@ -320,8 +267,14 @@ RunSummary Simulation::run() {
     s.channel_jam_time = channel->jam_time();
   }
   s.output_dir = outputs.path();
-  if (options_.profile) print_profile(world_);
+  if (options_.profile) {
+    print_profile(world_.profile(), world_.size());
+    if constexpr (kPlanar<W>) print_contact_search(world_);
+  }
   return s;
 }
+
+template class BasicSimulation<dynamics::World>;
+template class BasicSimulation<dynamics::SpatialWorld>;
 
 }  // namespace polyfloe::run

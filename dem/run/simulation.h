@@ -10,21 +10,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "dynamics/spatial_world.h"
 #include "dynamics/world.h"
 #include "io/vtk_writer.h"
 #include "run/checkpoint.h"
+#include "run/guard.h"
 #include "scene/scene.h"
 
 namespace polyfloe::run {
 
 // Process exit codes of the command line.
 enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitBadInput = 2, kExitUnstable = 3 };
-
-// The run became unstable: the message names the body, the time and what to change.
-class InstabilityError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct RunOptions {
   std::filesystem::path output_dir;  // created if missing
@@ -53,8 +49,8 @@ struct RunSummary {
   std::filesystem::path output_dir;
   std::optional<double> channel_area_passed;  // scenes with a channel: net ice area through the strait [m^2]
   std::optional<double> channel_jam_time;     // ... and when it jammed [s], if it did
-  std::optional<double> first_contact;        // spatial runs: the end of the first step with a contact [s]
-  std::uint64_t contact_steps = 0;            // ... and the steps that had one
+  std::optional<double> first_contact;        // spatial runs: the end of this run's first step with a contact [s]
+  std::uint64_t contact_steps = 0;            // ... and its steps that had one
 };
 
 // The output schedule of both drivers: steps of dt, the step before a frame time (a multiple of the output interval)
@@ -82,37 +78,44 @@ struct FrameClock {
   std::string note(double dt) const;
 };
 
-// Checks the state for NaN/Inf and runaway motion; throws InstabilityError with a suggestion. `dt` is the step in
-// use, `reference_speed` the scene's impact speed [m/s].
-void check_stability(const dynamics::World& world, double dt, double reference_speed);
-// The O(1) part, run every step: the shortest contact in progress must last at least dynamics::kMinStepsPerContact
-// (10) steps (Hertz duration at
-// the impact speed the contact implies).
-void check_contact_resolution(const dynamics::World& world, double dt);
-
-class Simulation {
+// The driver of both worlds (W: dynamics::World, the planar one, or dynamics::SpatialWorld): the same end-time and
+// frame rule (FrameClock), outputs (run/run_outputs.h), checkpoints and restart, threads, guard, progress and
+// profile. What only a planar scene has (the channel monitor, the velocity grid, results.xmf) is absent from a
+// spatial run.
+template <class W>
+class BasicSimulation {
  public:
   // `world` as built from `scene`. With `restart` (a checkpoint of a run of this scene, read from `restart_file`),
   // the run continues from it in options.output_dir, where the interrupted run's outputs must be: the constructor
   // checks the checkpoint against the world and those outputs and restores the state, before any file is touched.
   // Throws CheckpointError or scene::SceneError (bad input: exit 2).
-  Simulation(const scene::Scene& scene, dynamics::World world, const RunOptions& options,
-             std::optional<Checkpoint> restart = std::nullopt, const std::filesystem::path& restart_file = {});
+  BasicSimulation(const scene::Scene& scene, W world, const RunOptions& options,
+                  std::optional<Checkpoint> restart = std::nullopt, const std::filesystem::path& restart_file = {});
   // Runs to scene.time.duration. Throws InstabilityError (exit 3) or std::exception (exit 1). With checkpoints on,
   // an unstable run leaves its state in DIR/checkpoints/unstable.h5 for inspection.
   RunSummary run();
-  const dynamics::World& world() const { return world_; }
+  const W& world() const { return world_; }
   double dt() const { return dt_; }
 
  private:
+  void check_restart_outputs(const Checkpoint& c, const std::filesystem::path& restart_file);
+  void guard();  // after each step: the run guard, and a spatial run's contact count
+
   const scene::Scene& scene_;
-  dynamics::World world_;
+  W world_;
   RunOptions options_;
   double dt_ = 0.0;
   std::string signature_;
   std::optional<io::ImageGrid> grid_geometry_;
   std::optional<Checkpoint> restart_;
   std::filesystem::path restart_results_;  // a restart: the file its frames are copied from (see kResultsSnapshot)
+  double reference_speed_ = 0.0;           // [m/s]
+  RunSummary summary_;
 };
+
+using Simulation = BasicSimulation<dynamics::World>;
+using SpatialSimulation = BasicSimulation<dynamics::SpatialWorld>;
+extern template class BasicSimulation<dynamics::World>;
+extern template class BasicSimulation<dynamics::SpatialWorld>;
 
 }  // namespace polyfloe::run

@@ -152,6 +152,24 @@ class BadInput : public ::testing::TestWithParam<Case> {
       edit(c);
       polyfloe::run::write_checkpoint(base_ / ("edit_" + name + ".h5"), c);
     }
+    // The same for a spatial run's checkpoint (@CKPT_EDIT_spatial_<name>): the cube striking the plate.
+    const fs::path spatial = base_ / "spatial_run";
+    ASSERT_EQ(run_polyfloe({"run", std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/cube_plate.yaml", "-o",
+                            spatial.string(), "--set", "output.checkpoint.every=1", "--set", "run.duration=0.01"},
+                           base_ / "spatial_run.log"),
+              0)
+        << slurp(base_ / "spatial_run.log");
+    const polyfloe::run::Checkpoint cube = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(spatial));
+    const std::vector<std::pair<std::string, std::function<void(polyfloe::run::Checkpoint&)>>> spatial_edits{
+        {"spatial_orientation", [](auto& c) { c.spatial->orientation[1].coeffs() *= 1.01; }},
+        {"spatial_nan_momentum", [&](auto& c) { c.spatial->angular_momentum[1].x() = nan; }},
+        {"spatial_short_force", [](auto& c) { c.spatial->force.pop_back(); }},
+    };
+    for (const auto& [name, edit] : spatial_edits) {
+      polyfloe::run::Checkpoint c = cube;
+      edit(c);
+      polyfloe::run::write_checkpoint(base_ / ("edit_" + name + ".h5"), c);
+    }
   }
   static void TearDownTestSuite() { fs::remove_all(base_); }
 };

@@ -23,6 +23,7 @@
 #include "pvd.h"
 #include "run/checkpoint.h"
 #include "same_run.h"
+#include "spatial_pile.h"
 
 namespace fs = std::filesystem;
 using polyfloe::io::hdf5::Dataset;
@@ -70,8 +71,8 @@ void expect_readable_after_kill(const fs::path& dir) {
         continue;
       }
       // Killed while a fresh run was creating its files, before its first frame: nothing was complete to lose.
-      const bool nothing_done =
-          !fs::exists(dir / "floes.pvd") || polyfloe::tsupport::read_pvd(dir / "floes.pvd").empty();
+      const fs::path pvd = dir / (fs::exists(dir / "bodies.pvd") ? "bodies.pvd" : "floes.pvd");
+      const bool nothing_done = !fs::exists(pvd) || polyfloe::tsupport::read_pvd(pvd).empty();
       if (nothing_done && !fs::is_directory(dir / "checkpoints")) continue;
       ADD_FAILURE() << name << " is unreadable after the kill: " << e.what();
     }
@@ -109,7 +110,7 @@ Interrupted run_with_kills(const std::vector<std::string>& args, const fs::path&
     // A random moment of what is left to run (the uninterrupted run's wall time scaled by the simulated time left).
     double done = 0.0;
     if (fs::is_directory(dir / "checkpoints") && !fs::is_empty(dir / "checkpoints"))
-      done = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(dir)).world.time / duration;
+      done = polyfloe::run::read_checkpoint(polyfloe::run::find_checkpoint(dir)).time() / duration;
     const pid_t pid = spawn(next_args(), dir.string() + ".log");
     std::this_thread::sleep_for(std::chrono::duration<double>(when(rng) * wall * (1.0 - done)));
     kill(pid, SIGKILL);
@@ -170,6 +171,18 @@ TEST(Restart, KilledChannelRunRestartsBitwise) {
     count += e.path().filename().string().rfind("checkpoint_", 0) == 0;
   EXPECT_EQ(count, 2);
   fs::remove_all(base);
+}
+
+TEST(Restart, KilledSpatialRunRestartsBitwise) {
+  // 290 boxes piling up on a plate under gravity (tests/support/spatial_pile.h): quaternions, angular momenta,
+  // manifold contacts and their friction springs, the narrow phase's counts; a checkpoint every 2 frames.
+  const fs::path scene_dir = scratch("spatial_scene");
+  fs::create_directories(scene_dir);
+  const std::string scene = polyfloe::tsupport::write_spatial_pile(scene_dir / "pile.yaml");
+  fs::remove_all(killed_run_restarts_bitwise(
+      "spatial", {"run", scene, "--set", "output.checkpoint.every=2", "--set", "output.checkpoint.keep=2"}, 3, 0.4,
+      20261127, 2, 1));
+  fs::remove_all(scene_dir);
 }
 
 TEST(Restart, KilledFoundationForceModelRunRestartsBitwise) {
