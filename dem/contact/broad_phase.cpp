@@ -13,23 +13,29 @@ void GridBroadPhase::find_pairs(std::span<const geometry::Aabb> boxes, std::span
   scan_tiles(0, tiles_, pairs);
 }
 
-void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<const std::uint8_t> is_dynamic) {
-  boxes_ = boxes;
-  dynamic_ = is_dynamic;
-  tiles_ = 0;
-  const int n = static_cast<int>(boxes.size());
-  if (n < 2) return;
+namespace {
 
+// The grid over the boxes: its lower corner, cell size and cells along x and y (nx = 0: nothing to pair).
+struct GridShape {
+  geometry::Vec2 lo{0.0, 0.0};
+  double cell = 1.0;
+  int nx = 0, ny = 0;
+};
+
+// A non-finite box (a body whose state blew up; the run guard reports it) enters no cell: it has no pairs, and the
+// others keep theirs.
+bool finite_box(const geometry::Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); }
+
+GridShape grid_shape(std::span<const geometry::Aabb> boxes, std::span<const std::uint8_t> is_dynamic,
+                     double requested_cell, int tile) {
+  const int n = static_cast<int>(boxes.size());
   // Extent of everything, and the cell size.
   geometry::Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   geometry::Vec2 hi = -lo;
   double extent_sum = 0.0;
   int dynamic_count = 0;
-  // A non-finite box (a body whose state blew up; the run guard reports it) enters no cell: it has no pairs, and
-  // the others keep theirs.
-  auto finite = [&](int i) { return boxes[i].lo.allFinite() && boxes[i].hi.allFinite(); };
   for (int i = 0; i < n; ++i) {
-    if (!finite(i)) continue;
+    if (!finite_box(boxes[i])) continue;
     lo = lo.cwiseMin(boxes[i].lo);
     hi = hi.cwiseMax(boxes[i].hi);
     if (is_dynamic[i]) {
@@ -37,31 +43,51 @@ void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<cons
       ++dynamic_count;
     }
   }
-  if (dynamic_count == 0) return;
-  cell_ = requested_cell_ > 0.0 ? requested_cell_ : 2.0 * extent_sum / dynamic_count;
+  GridShape g;
+  if (dynamic_count == 0) return g;
+  g.lo = lo;
+  double cell = requested_cell > 0.0 ? requested_cell : 2.0 * extent_sum / dynamic_count;
   const geometry::Vec2 span = hi - lo;
   // Keep the grid no larger than ~4 cells per body (bodies spread far apart, or a tiny requested cell).
   const double max_cells = 4.0 * n + 1024.0;
-  // Cells are numbered tile by tile (kTile x kTile cells per tile, row-major inside a tile and between tiles), and
-  // the pairs are found in that order: the bodies a tile's pairs read stay in cache while it is scanned, however
-  // wide the field (a row-major scan of a 10 km field walks a whole row of cells before coming back). A grid
-  // narrower than a tile has tiles as wide as the grid (no padding along it); the cap counts the padding.
-  auto padded = [](double cells) {
-    const double t = std::min(static_cast<double>(kTile), cells);
+  // Cells are numbered tile by tile (see build()); a grid narrower than a tile has tiles as wide as the grid (no
+  // padding along it); the cap counts the padding.
+  auto padded = [&](double cells) {
+    const double t = std::min(static_cast<double>(tile), cells);
     return std::ceil(cells / t) * t;
   };
   auto cells_for = [&](double c) {
     return padded(std::floor(span.x() / c) + 1.0) * padded(std::floor(span.y() / c) + 1.0);
   };
   // Boxes far from the origin can round to zero extent (a cell of 0 would never grow): start from the span then.
-  if (!(cell_ > 0.0) || !std::isfinite(cell_)) cell_ = std::max({span.x(), span.y(), 1.0});
-  for (int grow = 0; grow < 4096 && cells_for(cell_) > max_cells; ++grow) cell_ *= 1.5;
-  if (!(cells_for(cell_) <= max_cells)) cell_ = std::numeric_limits<double>::infinity();  // one cell holds all
+  if (!(cell > 0.0) || !std::isfinite(cell)) cell = std::max({span.x(), span.y(), 1.0});
+  for (int grow = 0; grow < 4096 && cells_for(cell) > max_cells; ++grow) cell *= 1.5;
+  if (!(cells_for(cell) <= max_cells)) cell = std::numeric_limits<double>::infinity();  // one cell holds all
   auto count = [&](double extent) {  // one cell where the span itself overflowed (boxes near +-1e308)
-    const double c = std::floor(extent / cell_) + 1.0;
+    const double c = std::floor(extent / cell) + 1.0;
     return c >= 1.0 && c <= max_cells ? static_cast<int>(c) : 1;
   };
-  const int nx = count(span.x()), ny = count(span.y());
+  g.cell = cell;
+  g.nx = count(span.x());
+  g.ny = count(span.y());
+  return g;
+}
+
+}  // namespace
+
+void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<const std::uint8_t> is_dynamic) {
+  boxes_ = boxes;
+  dynamic_ = is_dynamic;
+  tiles_ = 0;
+  const int n = static_cast<int>(boxes.size());
+  if (n < 2) return;
+  const GridShape g = grid_shape(boxes, is_dynamic, requested_cell_, kTile);
+  if (g.nx == 0) return;
+  cell_ = g.cell;
+  const int nx = g.nx, ny = g.ny;
+  // Cells are numbered tile by tile (kTile x kTile cells per tile, row-major inside a tile and between tiles), and
+  // the pairs are found in that order: the bodies a tile's pairs read stay in cache while it is scanned, however
+  // wide the field (a row-major scan of a 10 km field walks a whole row of cells before coming back).
   const int tw = std::min(kTile, nx), th = std::min(kTile, ny);
   const int ntx = (nx + tw - 1) / tw;
   const std::size_t tile_cells = static_cast<std::size_t>(tw) * th;
@@ -72,15 +98,15 @@ void GridBroadPhase::build(std::span<const geometry::Aabb> boxes, std::span<cons
   };
   const double inv = 1.0 / cell_;
   // Clamped in double before the conversion (a NaN or an overflowed offset goes to cell 0, never to int UB).
-  auto cell_of = [](double v, int n) { return v >= 0.0 ? (v < n ? static_cast<int>(v) : n - 1) : 0; };
-  auto cx = [&](double x) { return cell_of((x - lo.x()) * inv, nx); };
-  auto cy = [&](double y) { return cell_of((y - lo.y()) * inv, ny); };
+  auto cell_of = [](double v, int cells) { return v >= 0.0 ? (v < cells ? static_cast<int>(v) : cells - 1) : 0; };
+  auto cx = [&](double x) { return cell_of((x - g.lo.x()) * inv, nx); };
+  auto cy = [&](double y) { return cell_of((y - g.lo.y()) * inv, ny); };
 
   // Counting sort of (body, cell) entries.
   ranges_.resize(4 * static_cast<std::size_t>(n));
   cell_start_.assign(padded_cells + 1, 0);
   for (int i = 0; i < n; ++i) {
-    if (!finite(i)) {  // an empty range: no cell
+    if (!finite_box(boxes[i])) {  // an empty range: no cell
       ranges_[4 * i] = ranges_[4 * i + 1] = 1;
       ranges_[4 * i + 2] = ranges_[4 * i + 3] = 0;
       continue;
