@@ -2,6 +2,8 @@
 // stay plain serial loops and no unknown-pragma warning appears).
 #pragma once
 
+#include <cstddef>
+
 #ifdef _OPENMP
 #include <omp.h>
 #define POLYFLOE_PRAGMA(x) _Pragma(#x)
@@ -24,3 +26,15 @@ inline int polyfloe_default_threads() { return omp_get_max_threads(); }
 inline int polyfloe_thread_index() { return 0; }
 inline int polyfloe_default_threads() { return 1; }
 #endif
+
+// body(i) for i in [0, n): on `threads` threads (POLYFLOE_OMP_FOR), or as a plain loop on this one when threads is
+// 1 (no call into the OpenMP runtime, whose start-up a loop over a few hundred bodies notices).
+template <class Body>
+void polyfloe_parallel_for(std::ptrdiff_t n, int threads, Body&& body) {
+  if (threads <= 1) {
+    for (std::ptrdiff_t i = 0; i < n; ++i) body(i);
+    return;
+  }
+  POLYFLOE_OMP_FOR(threads)
+  for (std::ptrdiff_t i = 0; i < n; ++i) body(i);
+}

@@ -197,27 +197,24 @@ void SpatialWorld::evaluate_pair(const contact::CandidatePair& p, double dt, std
   }
 }
 
-void SpatialWorld::sum_pairs() {
-  contacts_.clear();
-  for (std::size_t p = 0; p < pairs_.size(); ++p) {
-    PairResult& r = results_[p];
-    if (!r.error.empty()) {
-      const std::string error = std::move(r.error);
-      r.error.clear();
-      throw std::runtime_error(error);
-    }
-    if (!r.measured) continue;
-    ++stats_.queries;
-    if (r.failure) ++stats_.primary_failures;
-    if (!r.contact) continue;
-    const SpatialContact& k = r.k;
-    force_[k.b] += k.force;
-    torque_[k.b] += r.torque_b;
-    force_[k.a] -= k.force;
-    torque_[k.a] += r.torque_a;
-    if (r.spring) springs_.store(contact::make_key(id_[k.a], id_[k.b]), r.tangential_spring);
-    contacts_.push_back(k);
+// A pair's record into the forces, the contacts, the springs and the counts (called in pair order).
+void SpatialWorld::add_pair(PairResult& r) {
+  if (!r.error.empty()) {
+    const std::string error = std::move(r.error);
+    r.error.clear();
+    throw std::runtime_error(error);
   }
+  if (!r.measured) return;
+  ++stats_.queries;
+  if (r.failure) ++stats_.primary_failures;
+  if (!r.contact) return;
+  const SpatialContact& k = r.k;
+  force_[k.b] += k.force;
+  torque_[k.b] += r.torque_b;
+  force_[k.a] -= k.force;
+  torque_[k.a] += r.torque_a;
+  if (r.spring) springs_.store(contact::make_key(id_[k.a], id_[k.b]), r.tangential_spring);
+  contacts_.push_back(k);
 }
 
 void SpatialWorld::compute_forces(double dt) {
@@ -227,19 +224,28 @@ void SpatialWorld::compute_forces(double dt) {
   const auto t1 = clock::now();
   broad_.find_pairs(boxes_, is_dynamic_, pairs_);
   const auto t2 = clock::now();
-  if (results_.size() < pairs_.size()) results_.resize(pairs_.size());
+  contacts_.clear();
   // Pairs come in nearly last step's order: each thread passes its lookup hint along its stretch of pairs
-  // (contact::HistoryStore::previous), the index built first so that the threads only read it.
-  springs_.prepare_lookups();
-  hints_.assign(static_cast<std::size_t>(threads_), 0);
+  // (contact::HistoryStore::previous), the index built first when several threads will only read it (one thread
+  // builds it when a lookup first misses its hint, if ever).
   const auto n = static_cast<std::ptrdiff_t>(pairs_.size());
-  const int threads = threads_for(pairs_.size() * 16);  // a pair costs about as much as 16 bodies' kicks and moves
-  POLYFLOE_OMP_FOR(threads)
-  for (std::ptrdiff_t p = 0; p < n; ++p) {
-    const auto k = static_cast<std::size_t>(p);
-    evaluate_pair(pairs_[k], dt, hints_[static_cast<std::size_t>(polyfloe_thread_index())], results_[k]);
+  const int threads = threads_for(pairs_.size(), 700.0);
+  if (threads > 1) springs_.prepare_lookups();
+  hints_.assign(static_cast<std::size_t>(threads_), 0);
+  if (threads > 1) {  // every pair into a record of its own on the threads, then the records in pair order
+    if (results_.size() < pairs_.size()) results_.resize(pairs_.size());
+    polyfloe_parallel_for(n, threads, [&](std::ptrdiff_t p) {
+      const auto k = static_cast<std::size_t>(p);
+      evaluate_pair(pairs_[k], dt, hints_[static_cast<std::size_t>(polyfloe_thread_index())], results_[k]);
+    });
+    for (std::size_t k = 0; k < pairs_.size(); ++k) add_pair(results_[k]);
+  } else {  // the same, each record added as soon as it is made (one record, in cache)
+    if (results_.empty()) results_.resize(1);
+    for (const contact::CandidatePair& p : pairs_) {
+      evaluate_pair(p, dt, hints_[0], results_[0]);
+      add_pair(results_[0]);
+    }
   }
-  sum_pairs();
   springs_.end_step();
   forces_ready_ = true;
   profile_.forcing += std::chrono::duration<double>(t1 - t0).count();

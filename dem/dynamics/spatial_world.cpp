@@ -109,24 +109,18 @@ void SpatialWorld::update_world_vertices(int i) {
 }
 
 void SpatialWorld::kick(double half_dt) {
-  const auto n = static_cast<std::ptrdiff_t>(size());
-  const int threads = threads_for(size());
-  POLYFLOE_OMP_FOR(threads)
-  for (std::ptrdiff_t k = 0; k < n; ++k) {
+  polyfloe_parallel_for(static_cast<std::ptrdiff_t>(size()), threads_for(size(), 3.0), [&](std::ptrdiff_t k) {
     const auto i = static_cast<std::size_t>(k);
-    if (!is_dynamic_[i]) continue;
+    if (!is_dynamic_[i]) return;
     vel_[i] += half_dt * inv_mass_[i] * force_[i];
     ang_mom_[i] += half_dt * torque_[i];
-  }
+  });
 }
 
 void SpatialWorld::drift(double dt) {
-  const auto n = static_cast<std::ptrdiff_t>(size());
-  const int threads = threads_for(size());
-  POLYFLOE_OMP_FOR(threads)
-  for (std::ptrdiff_t k = 0; k < n; ++k) {
+  polyfloe_parallel_for(static_cast<std::ptrdiff_t>(size()), threads_for(size(), 250.0), [&](std::ptrdiff_t k) {
     const auto i = static_cast<std::size_t>(k);
-    if (motion_[i] == Motion::fixed) continue;
+    if (motion_[i] == Motion::fixed) return;
     pos_[i] += dt * vel_[i];
     if (motion_[i] == Motion::kinematic) {
       q_[i] = (exp_map(omega_kinematic_[i], dt) * q_[i]).normalized();
@@ -144,7 +138,7 @@ void SpatialWorld::drift(double dt) {
       q_[i] = (exp_map(w, dt) * q0).normalized();
     }
     update_world_vertices(static_cast<int>(i));
-  }
+  });
 }
 
 void SpatialWorld::step(double dt) {
@@ -164,24 +158,23 @@ void SpatialWorld::step(double dt) {
 }
 
 void SpatialWorld::body_loads() {
-  const auto n = static_cast<std::ptrdiff_t>(size());
-  const int threads = threads_for(size());
-  POLYFLOE_OMP_FOR(threads)
-  for (std::ptrdiff_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    force_[i].setZero();
-    torque_[i].setZero();
-    if (!is_dynamic_[i]) continue;
-    force_[i] += mass_[i] * settings_.gravity;
-    if (settings_.buoyancy) {
-      const auto sub = geometry::submerged_part(*shape_[i], world_vertices(static_cast<int>(i)), settings_.water_level);
-      if (sub.volume > 0.0) {
-        const Vec3 fb = -settings_.water_density * sub.volume * settings_.gravity;
-        force_[i] += fb;
-        torque_[i] += (sub.centroid - pos_[i]).cross(fb);
-      }
-    }
-  }
+  polyfloe_parallel_for(static_cast<std::ptrdiff_t>(size()), threads_for(size(), settings_.buoyancy ? 200.0 : 3.0),
+                        [&](std::ptrdiff_t k) {
+                          const auto i = static_cast<std::size_t>(k);
+                          force_[i].setZero();
+                          torque_[i].setZero();
+                          if (!is_dynamic_[i]) return;
+                          force_[i] += mass_[i] * settings_.gravity;
+                          if (settings_.buoyancy) {
+                            const auto sub = geometry::submerged_part(*shape_[i], world_vertices(static_cast<int>(i)),
+                                                                      settings_.water_level);
+                            if (sub.volume > 0.0) {
+                              const Vec3 fb = -settings_.water_density * sub.volume * settings_.gravity;
+                              force_[i] += fb;
+                              torque_[i] += (sub.centroid - pos_[i]).cross(fb);
+                            }
+                          }
+                        });
 }
 
 SpatialWorldState SpatialWorld::state() const {

@@ -220,11 +220,13 @@ class SpatialWorld {
   bool apply_contact(const contact::ContactManifold& m, double dt, std::size_t& hint, PairResult& r) const;
   Vec3 friction(const PairResult& r, const contact::PairCoefficients& coef, double normal_total, const Vec3& vrel,
                 double dt, std::size_t& hint, Vec3& spring) const;
-  void sum_pairs();  // the pairs' results into the forces, contacts, springs and counts, in pair order
-  // The threads of a loop over `items` bodies: one below kParallelBodies, where starting the threads costs more
-  // than the loop (a few microseconds; the result is the same either way).
-  static constexpr std::size_t kParallelBodies = 256;
-  int threads_for(std::size_t items) const { return items >= kParallelBodies ? threads_ : 1; }
+  void add_pair(PairResult& r);
+  // The threads of a loop of `items` items of about `ns_per_item` each: one below kParallelWork, where starting the
+  // threads (a few microseconds) would cost more than they save; the result is the same either way.
+  static constexpr double kParallelWork = 2e4;  // [ns]
+  int threads_for(std::size_t items, double ns_per_item) const {
+    return static_cast<double>(items) * ns_per_item >= kParallelWork ? threads_ : 1;
+  }
 
   SpatialSettings settings_;
   contact::ContactLaw law_;
