@@ -195,6 +195,17 @@ int guarded_run(F&& body) {
   }
 }
 
+// The spatial world of a scene: whatever refuses to build it is bad input (a SceneError naming the scene).
+dynamics::SpatialWorld build_spatial(const Args& args, const scene::Scene& sc) {
+  try {
+    return scene::build_spatial_world(sc);
+  } catch (const scene::SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw scene::SceneError(args.scene + ": " + e.what());
+  }
+}
+
 // `polyfloe check` of a spatial scene (spatial: block): 6-DOF polyhedra.
 int check(const scene::Scene& sc, const dynamics::SpatialWorld& world) {
   const double dt = scene::time_step(sc, world);
@@ -357,7 +368,7 @@ int main(int argc, char** argv) {
   try {
     sc = scene::read_scene(args.scene, args.overrides);
     if (sc.spatial)
-      spatial.emplace(scene::build_spatial_world(sc));
+      spatial.emplace(build_spatial(args, sc));
     else
       world.emplace(scene::build_world(sc, &field));
     const double dt = spatial ? scene::time_step(sc, *spatial) : scene::time_step(sc, *world);

@@ -178,7 +178,7 @@ Vec3 SpatialWorld::friction(const PairResult& r, const contact::PairCoefficients
 // One candidate pair, apart from every other: its narrow phase, manifold and forces into r (no member written).
 void SpatialWorld::evaluate_pair(const contact::CandidatePair& p, double dt, std::size_t& hint, PairResult& r) const {
   r.measured = r.failure = r.contact = r.spring = false;
-  r.error.clear();
+  r.error = nullptr;
   int a = p.a, b = p.b;
   if (z_lo_[a] > z_hi_[b] || z_lo_[b] > z_hi_[a]) return;
   if (id_[a] > id_[b]) std::swap(a, b);
@@ -191,19 +191,14 @@ void SpatialWorld::evaluate_pair(const contact::CandidatePair& p, double dt, std
     const contact::ContactManifold m = manifold(a, b, rot_a, rot_b, c, r.k);
     if (!(r.k.depth > 0.0)) return;
     r.contact = apply_contact(m, dt, hint, r);
-  } catch (const std::exception& e) {  // not across the threads: rethrown in pair order by sum_pairs
-    r.error = e.what();
-    r.error += r.error.empty() ? "?" : "";
+  } catch (...) {  // not across the threads: rethrown in pair order by add_pair
+    r.error = std::current_exception();
   }
 }
 
 // A pair's record into the forces, the contacts, the springs and the counts (called in pair order).
 void SpatialWorld::add_pair(PairResult& r) {
-  if (!r.error.empty()) {
-    const std::string error = std::move(r.error);
-    r.error.clear();
-    throw std::runtime_error(error);
-  }
+  if (r.error) std::rethrow_exception(std::exchange(r.error, nullptr));
   if (!r.measured) return;
   ++stats_.queries;
   if (r.failure) ++stats_.primary_failures;

@@ -206,6 +206,9 @@ void SpatialWorld::restore(const SpatialWorldState& s) {
       bad("the orientation of body " + std::to_string(id_[i]) + " is not a unit quaternion");
     if (motion_[i] == Motion::fixed && (s.position[i] != pos_[i] || s.orientation[i].coeffs() != q_[i].coeffs()))
       bad("fixed body " + std::to_string(id_[i]) + " is not where the scene puts it");
+    if (!is_dynamic_[i] && (s.velocity[i] != vel_[i] || s.angular_momentum[i] != ang_mom_[i]))
+      bad(std::string(to_string(motion_[i])) + " body " + std::to_string(id_[i]) +
+          " does not move as the scene prescribes");
   }
   for (const auto& [key, spring] : s.contact_history)
     if (!(key.lo < key.hi) || !index_.count(key.lo) || !index_.count(key.hi) || !spring.allFinite())

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <memory>
+#include <exception>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -209,9 +210,9 @@ class SpatialWorld {
     bool contact = false;   // a contact with forces (k, torques, spring below)
     bool spring = false;    // a tangential spring to keep (friction)
     SpatialContact k;
-    Vec3 torque_a, torque_b;  // [N m]
-    Vec3 tangential_spring;   // [m]
-    std::string error;        // a contact that could not be measured or gave a non-finite force
+    Vec3 torque_a, torque_b;   // [N m]
+    Vec3 tangential_spring;    // [m]
+    std::exception_ptr error;  // a contact that could not be measured or gave a non-finite force
   };
   void evaluate_pair(const contact::CandidatePair& p, double dt, std::size_t& hint, PairResult& r) const;
   contact::SatContact measure(int a, int b, const Mat3& rot_a, const Mat3& rot_b, bool& failure) const;

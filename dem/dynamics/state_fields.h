@@ -133,8 +133,11 @@ class BodyRowCheck {
   void count(const char*, const char*, const T&, double) {}
   template <class T>
   void bodies(const char* name, const std::vector<T>& rows) {
-    if (ids_ == nullptr) {
-      if constexpr (std::is_same_v<T, std::uint64_t>) ids_ = &rows;
+    if (ids_ == nullptr) {  // the first per-body field: the ids
+      if constexpr (std::is_same_v<T, std::uint64_t>)
+        ids_ = &rows;
+      else if (problem_.empty())
+        problem_ = std::string("the state's first per-body field, ") + name + ", is not the body ids";
       return;
     }
     check(name, rows, false);

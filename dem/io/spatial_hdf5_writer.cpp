@@ -75,7 +75,7 @@ struct SpatialHdf5Writer::Impl {
     linear_momentum = series(diag, "linear_momentum", DType::f64, {3}, kSeriesChunk, "kg m/s");
     angular_momentum = series(diag, "angular_momentum", DType::f64, {3}, kSeriesChunk, "kg m^2/s", "about the origin");
     failures = series(diag, "narrow_phase_failures", DType::i64, {}, kSeriesChunk, "1",
-                      "queries the chosen narrow phase failed and MPR answered (cumulative)");
+                      "queries the chosen narrow phase failed and sat answered (cumulative)");
     file.flush();
   }
 

@@ -7,7 +7,7 @@
 //          angular_velocity [T,N,3] [rad/s] (world frame)
 //   /diagnostics/kinetic_energy [T] [J], contact_energy [T] [J], contact_count [T], linear_momentum [T,3]
 //          [kg m/s], angular_momentum [T,3] [kg m^2/s] (about the origin), narrow_phase_failures [T] (queries the
-//          chosen method failed and MPR answered, cumulative)
+//          chosen method failed and sat answered, cumulative)
 //
 // Root attributes as a planar run's (scene_path, scene_text, code_version, overrides, dt, created_by) plus
 // mode = "spatial". SWMR from the first frame (or start_swmr()), flushed per frame.

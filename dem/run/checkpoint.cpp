@@ -67,12 +67,28 @@ std::vector<T> get(const Group& g, const char* name, std::size_t rows, std::size
 }
 
 // Rows of a dataset whose length is not known in advance (rank 1, or rank 2 with `width` columns).
+// At most 10^8 rows (a checkpoint of 10^8 bodies or pairs is gigabytes; a larger count is a damaged file, refused
+// before anything is allocated for it).
 std::size_t rows_of(const Group& g, const char* name) {
-  const Dims dims = g.open_dataset(name).dims();
-  return dims.empty() ? 0 : static_cast<std::size_t>(dims[0]);
+  const Dataset d = g.open_dataset(name);
+  const Dims dims = d.dims();
+  const std::uint64_t rows = dims.empty() ? 0 : dims[0];
+  if (rows > 100'000'000)
+    throw CheckpointError("checkpoint " + d.where() + ": " + std::to_string(rows) +
+                          " rows, more than the 1e8 any "
+                          "run writes");
+  return static_cast<std::size_t>(rows);
 }
 
 std::optional<double> maybe(double v) { return std::isnan(v) ? std::nullopt : std::optional<double>(v); }
+
+// "x, y" or "x, y, z" [m].
+template <class V>
+std::string position_text(const V& p) {
+  std::string out;
+  for (Eigen::Index c = 0; c < p.size(); ++c) out += (c ? ", " : "") + std::to_string(p[c]);
+  return out;
+}
 
 // "1e12" for 10^12.
 std::string power_of_ten(double x) { return "1e" + std::to_string(static_cast<int>(std::lround(std::log10(x)))); }
@@ -445,8 +461,7 @@ void check_restart(const Checkpoint& c, const fs::path& file, const std::string&
     // Beyond 10^10 m the floes' own extent rounds away against their position: no run gets there.
     for (const auto& p : state.position)
       if (!(p.cwiseAbs().maxCoeff() <= 1e10))
-        throw CheckpointError(where + "holds a body at " + std::to_string(p.x()) + ", " + std::to_string(p.y()) +
-                              " m, beyond the 1e10 m any run reaches");
+        throw CheckpointError(where + "holds a body at " + position_text(p) + " m, beyond the 1e10 m any run reaches");
   };
   if (c.spatial)
     bodies(*c.spatial);

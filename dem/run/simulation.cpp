@@ -190,14 +190,21 @@ void BasicSimulation<W>::check_restart_outputs(const Checkpoint& c, const std::f
 namespace {
 
 // Where the step's time went (polyfloe run --profile), on stderr.
-void print_profile(const dynamics::StepProfile& p, std::size_t bodies) {
+void print_profile(const dynamics::StepProfile& p, std::size_t bodies, bool planar) {
   const double total = p.integrate + p.shapes + p.broad + p.narrow_and_law + p.forcing + p.bonds;
   const double per = 1e6 / (static_cast<double>(std::max<std::uint64_t>(p.steps, 1)) * static_cast<double>(bodies));
-  std::fprintf(stderr,
-               "profile (us per body-step): integrate %.3f, shapes + prediction %.3f, broad phase %.3f, "
-               "narrow phase + law %.3f, drift forces %.3f, bonds %.3f; total %.3f (%zu bodies, %llu steps)\n",
-               p.integrate * per, p.shapes * per, p.broad * per, p.narrow_and_law * per, p.forcing * per, p.bonds * per,
-               total * per, bodies, static_cast<unsigned long long>(p.steps));
+  if (planar)
+    std::fprintf(stderr,
+                 "profile (us per body-step): integrate %.3f, shapes + prediction %.3f, broad phase %.3f, "
+                 "narrow phase + law %.3f, drift forces %.3f, bonds %.3f; total %.3f (%zu bodies, %llu steps)\n",
+                 p.integrate * per, p.shapes * per, p.broad * per, p.narrow_and_law * per, p.forcing * per,
+                 p.bonds * per, total * per, bodies, static_cast<unsigned long long>(p.steps));
+  else
+    std::fprintf(stderr,
+                 "profile (us per body-step): integrate (kicks, move, world vertices) %.3f, broad phase %.3f, "
+                 "narrow phase + law %.3f, gravity and buoyancy %.3f; total %.3f (%zu bodies, %llu steps)\n",
+                 p.integrate * per, p.broad * per, p.narrow_and_law * per, p.forcing * per, total * per, bodies,
+                 static_cast<unsigned long long>(p.steps));
 }
 
 void print_contact_search(const dynamics::World& world) {
@@ -268,7 +275,7 @@ RunSummary BasicSimulation<W>::run() {
   }
   s.output_dir = outputs.path();
   if (options_.profile) {
-    print_profile(world_.profile(), world_.size());
+    print_profile(world_.profile(), world_.size(), kPlanar<W>);
     if constexpr (kPlanar<W>) print_contact_search(world_);
   }
   return s;

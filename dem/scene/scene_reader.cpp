@@ -140,12 +140,13 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   top.finish();
   if (s.spatial) {
     // Spatial scenes have polyhedra, gravity and buoyancy; level-floe content would be silently ignored.
-    const char* planar_only = !s.bodies.empty() ? "floes"
-                              : s.floe_field    ? "floe_field"
-                              : s.ice_sheet     ? "ice_sheet"
-                              : s.channel       ? "channel"
-                              : has_forcing     ? "forcing"
-                                                : nullptr;
+    const char* planar_only = !s.bodies.empty()                ? "floes"
+                              : s.floe_field                   ? "floe_field"
+                              : s.ice_sheet                    ? "ice_sheet"
+                              : s.channel                      ? "channel"
+                              : has_forcing                    ? "forcing"
+                              : s.output.velocity_grid.enabled ? "output.velocity_grid"
+                                                               : nullptr;
     if (planar_only)
       throw SceneError(s.spatial->source.where +
                        ": a spatial scene takes its bodies from 'spatial.bodies' and has "

@@ -1,7 +1,7 @@
 // A spatial scene with hundreds of bodies in contact, for the tests of the spatial driver (threads, restart): 17 x 17
 // boxes (0.8 x 0.8 x 0.4 m, each tilted by 1-5 degrees about its own axis, 5 cm apart) thrown at 1 m/s onto a fixed
 // plate under gravity, sliding sideways into each other at up to 0.5 m/s and spinning; friction 0.3, the manifold
-// contact point. About 300 contacts from t = 0.1 s (every box on the plate, most touching a neighbour); 290 bodies,
+// contact point. About 200 contacts once every box has landed (t = 0.15 s), 300 by t = 0.3 s; 290 bodies,
 // so the move and the pairs run on every thread (the kicks stay on one: too little work).
 #pragma once
 
