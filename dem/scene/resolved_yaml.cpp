@@ -57,12 +57,11 @@ std::string field_yaml(const forcing::FieldSpec& f) {
   return o.str();
 }
 
-}  // namespace
+std::string opt(const std::optional<double>& x) { return x ? fmt(*x) : std::string("auto"); }
+const char* on(bool b) { return b ? "true" : "false"; }
 
-std::string resolved_yaml(const Scene& s) {
-  std::ostringstream o;
-  auto opt = [](const std::optional<double>& x) { return x ? fmt(*x) : std::string("auto"); };
-  auto on = [](bool b) { return b ? "true" : "false"; };
+// The comment lines: the scene, its file (one spelling) and the --set overrides; its name.
+void put_header(std::ostream& o, const Scene& s) {
   o << "# Scene '" << s.name << "', every setting resolved (units in the comments).\n";
   if (!s.source_path.empty()) {  // one spelling of the file (links and '..' resolved): restarts compare this text
     std::error_code ec;
@@ -71,6 +70,10 @@ std::string resolved_yaml(const Scene& s) {
   }
   for (const std::string& ov : s.overrides) o << "# --set " << ov << "\n";
   o << "name: " << quoted(s.name) << "\n";
+}
+
+// `run` and `output`.
+void put_run_and_output(std::ostream& o, const Scene& s) {
   o << "run:\n"
     << "  duration: " << fmt(s.time.duration) << "  # [s] simulated time\n"
     << "  dt: " << opt(s.time.dt) << "  # [s] time step; auto = shortest contact duration / steps_per_contact\n"
@@ -95,6 +98,10 @@ std::string resolved_yaml(const Scene& s) {
   o << "  checkpoint:\n"
     << "    every: " << s.output.checkpoint.every << "  # [frames] 0 = no checkpoints\n"
     << "    keep: " << s.output.checkpoint.keep << "  # newest checkpoints kept\n";
+}
+
+// `ice` and `contact`.
+void put_ice_and_contact(std::ostream& o, const Scene& s) {
   const contact::ContactLawSettings& c = s.world.contact;
   o << "ice:\n"
     << "  density: " << fmt(s.ice_density) << "  # [kg/m^3]\n"
@@ -111,6 +118,10 @@ std::string resolved_yaml(const Scene& s) {
     << "  # [m]\n"
     << "  broad_phase_skin: " << (s.world.broad_phase_skin > 0.0 ? fmt(s.world.broad_phase_skin) : std::string("auto"))
     << "  # [m] speed only: the contacts are the same for any value\n";
+}
+
+// `forcing` and `floes` (planar scenes).
+void put_forcing_and_floes(std::ostream& o, const Scene& s) {
   if (!s.spatial) {  // spatial scenes have neither drift forcing nor floes
     const forcing::DriftSettings& d = s.world.drift;
     auto term = [&](bool enabled, double c) {
@@ -151,6 +162,10 @@ std::string resolved_yaml(const Scene& s) {
         << "    external_torque: " << fmt(b.external_torque) << "  # [N m]\n";
     }
   }
+}
+
+// `floe_field`.
+void put_floe_field(std::ostream& o, const Scene& s) {
   if (const auto& f = s.floe_field) {
     o << "floe_field:\n"
       << "  region: [" << fmt(f->region_min.x()) << ", " << fmt(f->region_min.y()) << ", " << fmt(f->region_max.x())
@@ -166,6 +181,10 @@ std::string resolved_yaml(const Scene& s) {
       << "  seed: " << f->seed << "\n"
       << "  max_attempts: " << f->max_attempts << "  # [-] placement tries per floe\n";
   }
+}
+
+// `ice_sheet`.
+void put_ice_sheet(std::ostream& o, const Scene& s) {
   if (const auto& sh = s.ice_sheet) {
     o << "ice_sheet:\n"
       << "  region: [" << fmt(sh->region_min.x()) << ", " << fmt(sh->region_min.y()) << ", " << fmt(sh->region_max.x())
@@ -185,6 +204,10 @@ std::string resolved_yaml(const Scene& s) {
         << "    damping_ratio: " << fmt(b->damping_ratio) << "  # [-]\n";
     }
   }
+}
+
+// `spatial`.
+void put_spatial(std::ostream& o, const Scene& s) {
   if (const auto& sp = s.spatial) {
     auto v3 = [](const geometry::Vec3& v) { return "[" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]"; };
     o << "spatial:\n"
@@ -215,6 +238,10 @@ std::string resolved_yaml(const Scene& s) {
       if (b.id) o << "      id: " << *b.id << "\n";
     }
   }
+}
+
+// `channel`.
+void put_channel(std::ostream& o, const Scene& s) {
   if (const auto& ch = s.channel) {
     o << "channel:\n"
       << "  basin_x_min: " << fmt(ch->basin_x_min) << "  # [m]\n"
@@ -228,6 +255,15 @@ std::string resolved_yaml(const Scene& s) {
       << "  jam_window: " << fmt(ch->jam_window) << "  # [s] jammed: no ice through the strait entrance this long\n"
       << "  jam_speed: " << fmt(ch->jam_speed) << "  # [m/s] ... with the funnel's ice slower than this\n";
   }
+}
+
+}  // namespace
+
+std::string resolved_yaml(const Scene& s) {
+  std::ostringstream o;
+  for (auto put : {put_header, put_run_and_output, put_ice_and_contact, put_forcing_and_floes, put_floe_field,
+                   put_ice_sheet, put_spatial, put_channel})
+    put(o, s);
   return o.str();
 }
 
