@@ -81,9 +81,9 @@ std::vector<double> grid_levels(const GridSpec& spec, double surface, double zlo
   return levels;
 }
 
-// Samples every node of every snapshot at height probe_z(level): the velocity where the mesh has a cell, the node
-// marked wet.
-void sample_nodes(const std::vector<MeshSnapshot>& snapshots, const std::function<double(double)>& probe_z,
+// Samples every node of every snapshot at the height surface + level, clamped to [z_lo, z_hi]: the velocity where
+// the mesh has a cell, the node marked wet.
+void sample_nodes(const std::vector<MeshSnapshot>& snapshots, double surface, double z_lo, double z_hi,
                   const std::function<void(double)>& progress, io::FieldFile& f) {
   forcing::GridData& g = f.grid;
   const std::size_t per = g.nodes_per_snapshot();
@@ -99,7 +99,7 @@ void sample_nodes(const std::vector<MeshSnapshot>& snapshots, const std::functio
       for (std::size_t iy = 0; iy < g.y.size(); ++iy, ++row) {
         if (progress) progress(row / rows);
         for (std::size_t ix = 0; ix < g.x.size(); ++ix) {
-          if (!snapshots[it].sample({g.x[ix], g.y[iy], probe_z(g.z[iz])}, u)) continue;
+          if (!snapshots[it].sample({g.x[ix], g.y[iy], std::clamp(surface + g.z[iz], z_lo, z_hi)}, u)) continue;
           const std::size_t k = g.index(it, iz, iy, ix);
           g.u[k] = u.x();
           g.v[k] = u.y();
@@ -166,8 +166,7 @@ io::FieldFile resample(const std::vector<MeshSnapshot>& snapshots, const GridSpe
   const double surface = spec.surface.value_or(zhi);
   g.z = grid_levels(spec, surface, zlo, zhi, snapshots.front().depth_averaged(), source);
   for (const MeshSnapshot& s : snapshots) g.t.push_back(steady && snapshots.size() == 1 ? 0.0 : s.time());
-  sample_nodes(
-      snapshots, [&](double z) { return std::clamp(surface + z, zlo + inset, zhi - inset); }, progress, f);
+  sample_nodes(snapshots, surface, zlo + inset, zhi - inset, progress, f);
   keep_one_level_if_all_same(f);
   f.info.source = source;
   return f;

@@ -108,6 +108,20 @@ struct StateRow<forcing::DriftLoad> {  // force x, y, torque, dxx, dxy, dyy, dxw
   }
 };
 
+// Rows as one flat array of their scalars (row after row), and back: how a state array is stored.
+template <class T>
+std::vector<typename StateRow<T>::Scalar> pack_rows(const std::vector<T>& rows) {
+  std::vector<typename StateRow<T>::Scalar> flat(rows.size() * StateRow<T>::width);
+  for (std::size_t i = 0; i < rows.size(); ++i) StateRow<T>::pack(rows[i], flat.data() + i * StateRow<T>::width);
+  return flat;
+}
+template <class T>
+std::vector<T> unpack_rows(const std::vector<typename StateRow<T>::Scalar>& flat) {
+  std::vector<T> rows(flat.size() / StateRow<T>::width);
+  for (std::size_t i = 0; i < rows.size(); ++i) StateRow<T>::unpack(flat.data() + i * StateRow<T>::width, rows[i]);
+  return rows;
+}
+
 // Whether every value of a row is finite.
 template <class T>
 bool finite_row(const T& row) {

@@ -160,8 +160,7 @@ class StateWriter {
   template <class T>
   void put_rows(const char* name, const std::vector<T>& rows) {
     using Row = dynamics::StateRow<T>;
-    std::vector<typename Row::Scalar> flat(rows.size() * Row::width);
-    for (std::size_t i = 0; i < rows.size(); ++i) Row::pack(rows[i], flat.data() + i * Row::width);
+    const std::vector<typename Row::Scalar> flat = dynamics::pack_rows(rows);
     const std::span<const typename Row::Scalar> data(flat);
     if constexpr (Row::width == 1)
       g_->write_dataset<typename Row::Scalar>(name, data);
@@ -248,10 +247,7 @@ class StateReader {
   template <class T>
   std::vector<T> get_rows(const char* name, std::size_t rows) {
     using Row = dynamics::StateRow<T>;
-    const std::vector<typename Row::Scalar> flat = get<typename Row::Scalar>(*g_, name, rows, Row::width);
-    std::vector<T> out(rows);
-    for (std::size_t i = 0; i < rows; ++i) Row::unpack(flat.data() + i * Row::width, out[i]);
-    return out;
+    return dynamics::unpack_rows<T>(get<typename Row::Scalar>(*g_, name, rows, Row::width));
   }
   const Group* g_;
   fs::path file_;

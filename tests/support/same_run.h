@@ -154,10 +154,8 @@ class StateBytes {
   }
   template <class T>
   void add_rows(const char* name, const std::vector<T>& rows) {
-    using Row = dynamics::StateRow<T>;
-    std::vector<typename Row::Scalar> flat(rows.size() * Row::width);
-    for (std::size_t i = 0; i < rows.size(); ++i) Row::pack(rows[i], flat.data() + i * Row::width);
-    add(name, flat.data(), flat.size() * sizeof(typename Row::Scalar));
+    const auto flat = dynamics::pack_rows(rows);
+    add(name, flat.data(), flat.size() * sizeof(flat[0]));
   }
 };
 
