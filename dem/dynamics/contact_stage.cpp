@@ -12,7 +12,7 @@
 namespace polyfloe::dynamics {
 
 SlotView World::slot_view() const {
-  return {slots_, body_slot_, slot_static_, boxes_, slot_dynamic_, world_xy_, pos_, yaw_, reach_};
+  return {order_.slots(), order_.body_slots(), slot_static_, boxes_, slot_dynamic_, world_xy_, pos_, yaw_, reach_};
 }
 
 void World::sum_contacts(int n) {
@@ -62,7 +62,7 @@ void World::sum_contacts(int n) {
   // slot from the blocks, neighbouring bodies of different blocks would share cache lines).
   POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i) {
-    const int k = body_slot_[static_cast<std::size_t>(i)];
+    const int k = order_.slot_of(i);
     force_[i] += slot_force_[k];
     torque_[i] += slot_torque_[k];
   }
@@ -114,9 +114,7 @@ void World::sum_block(int c, std::span<contact::ContactCache::Entry> stores, std
     add(r, pairs_[p].a);
     if (pairs_[p].b < hi) add(r, pairs_[p].b);
     // The overlap deepest against half the smaller floe's equivalent radius (the run guard's limit).
-    const double limit = 0.5 * std::min(A.equivalent_radius, B.equivalent_radius);
-    if (const double ratio = r.g.depth / limit; ratio > blk.deepest.ratio)
-      blk.deepest = {ratio, r.g.depth, limit, A.body, B.body};
+    blk.deepest.consider(r.g.depth, kOverlapLimit * std::min(A.equivalent_radius, B.equivalent_radius), A.body, B.body);
   }
 }
 
@@ -125,19 +123,25 @@ void World::merge_sum_blocks(std::size_t hits) {
   contacts_.clear();
   contacts_ready_ = false;  // the records are listed from pair_results_ when asked for (contacts())
   contact_count_ = hits;
-  worst_q2_ = worst_v2_ = 0.0;
-  worst_a_ = worst_b_ = -1;
-  deepest_ = DeepestOverlap{};
+  // The worst contact has the largest q2 = v^2 (k_n/m*)^4: the shortest duration.
+  double worst_q2 = 0.0, worst_v2 = 0.0;
+  int worst_a = -1, worst_b = -1;
+  report_.deepest = DeepestOverlap{};
   for (const SumBlock& blk : sum_blocks_) {
     narrow_phase_failures_ += blk.failures;
     profile_.reused += blk.reused;
-    if (blk.worst_q2 > worst_q2_) {
-      worst_q2_ = blk.worst_q2;
-      worst_v2_ = blk.worst_v2;
-      worst_a_ = blk.worst_a;
-      worst_b_ = blk.worst_b;
+    if (blk.worst_q2 > worst_q2) {
+      worst_q2 = blk.worst_q2;
+      worst_v2 = blk.worst_v2;
+      worst_a = blk.worst_a;
+      worst_b = blk.worst_b;
     }
-    if (blk.deepest.ratio > deepest_.ratio) deepest_ = blk.deepest;
+    if (blk.deepest.ratio > report_.deepest.ratio) report_.deepest = blk.deepest;
+  }
+  report_.shortest = ContactResolution{};
+  if (worst_a >= 0 && worst_q2 > 0.0) {
+    // t_c = 3.2181 (m*/k_n)^(2/5) v^(-1/5) = 3.2181 (v^2 (k_n/m*)^4)^(-1/10)
+    report_.shortest = {3.2181 * std::pow(worst_q2, -0.1), std::sqrt(worst_v2), worst_a, worst_b};
   }
   cache_.end_step();
   history_gen_ = cache_.generation();

@@ -22,16 +22,6 @@ struct FieldNow {
 
 }  // namespace
 
-bool World::drift_from_linear_model(double dt) const {
-  const forcing::DriftSettings& s = settings_.drift;
-  const std::size_t n = size();
-  // A function of the step count alone (restarts keep it), and never on the first evaluation or after a change
-  // from outside (dt = 0: compute_forces anew).
-  return s.update_every > 1 && s.treatment == forcing::DriftTreatment::semi_implicit && dt > 0.0 &&
-         steps_ % static_cast<std::uint64_t>(s.update_every) != 0 && drift_load_.size() == n &&
-         lin_force_.size() == n && lin_torque_.size() == n;
-}
-
 // What every body of one drift evaluation shares.
 struct World::DriftStage {
   const forcing::DriftSettings& s;
@@ -124,12 +114,10 @@ void World::add_surface_drift(std::size_t i, const DriftStage& stage, const forc
 void World::drift_forces(double t) {
   const forcing::DriftSettings& s = settings_.drift;
   const std::size_t n = size();
-  inverse_dt_ = 0.0;  // new drag matrices: compute_forces keeps their inverses anew
-  if (!s.any()) {
-    drift_load_.assign(n, forcing::DriftLoad{});
-    return;
-  }
-  drift_load_.resize(n);  // every body's written in the loop below (not zeroed here first: a pass of its own)
+  // New drag matrices: compute_forces keeps their inverses anew. Every body's load is written in the loop below
+  // (not zeroed here first: a pass of its own).
+  drift_.resize(n, !s.any());
+  if (!s.any()) return;
   const DriftStage stage{s,
                          t,
                          FieldNow(s.ocean.get(), t),
@@ -151,7 +139,7 @@ void World::drift_forces(double t) {
       __builtin_prefetch(ahead + 8);
     }
     if (!is_dynamic_[i]) {
-      drift_load_[i] = forcing::DriftLoad{};
+      drift_.load(i) = forcing::DriftLoad{};
       continue;
     }
     DriftScratch& scratch = drift_scratch_[static_cast<std::size_t>(polyfloe_thread_index())];
@@ -165,9 +153,9 @@ void World::drift_forces(double t) {
       if (s.coriolis) forcing::add_coriolis(load, mass_[i], s.coriolis_parameter(pos_[i].y()), m.velocity);
       force_[i] += load.force;
       torque_[i] += load.torque;
-      drift_load_[i] = semi_implicit ? load : forcing::DriftLoad{};
+      drift_.load(i) = semi_implicit ? load : forcing::DriftLoad{};
     } catch (const forcing::FieldError& e) {
-      drift_load_[i] = forcing::DriftLoad{};
+      drift_.load(i) = forcing::DriftLoad{};
       if (scratch.error_body < 0) {  // each thread meets its bodies in increasing order
         scratch.error_body = ii;
         scratch.error_text = e.what();

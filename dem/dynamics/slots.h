@@ -3,9 +3,13 @@
 // they were added in. Slots are private to the step; these are the records it keeps per slot.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "dynamics/body.h"
+#include "geometry/space_order.h"
 
 namespace polyfloe::dynamics {
 
@@ -30,6 +34,47 @@ struct SlotStatic {
 struct SlotState {
   Vec2 pos{0.0, 0.0}, vel{0.0, 0.0};  // [m], [m/s] (velocity as evaluated)
   double omega = 0.0;                 // [rad/s]
+};
+
+// The order of the slots: which body each slot holds, sorted by (key, body), the key a body's cell at its position
+// (geometry::space_key: cells of cell() numbered tile by tile). The order is a function of the current positions
+// alone (restarts reproduce it); it is re-sorted by insertion from the last order, O(N) while floes keep their
+// neighbours.
+class SlotOrder {
+ public:
+  std::size_t size() const { return slots_.size(); }
+  double cell() const { return cell_; }  // [m]
+  void set_cell(double cell) { cell_ = cell; }
+
+  // A new body takes the last slot, its key unset (above every key: the next sort places it).
+  void add(int body) {
+    slots_.push_back({~std::uint64_t{0}, body});
+    body_slot_.push_back(static_cast<int>(slots_.size()) - 1);
+  }
+  // Body i's key at `position`; whether it changed.
+  bool set_key(int i, const Vec2& position) {
+    SlotKey& slot = slots_[static_cast<std::size_t>(body_slot_[static_cast<std::size_t>(i)])];
+    const std::uint64_t key = geometry::space_key(position, cell_);
+    const bool changed = key != slot.key;
+    slot.key = key;
+    return changed;
+  }
+  int slot_of(int body) const { return body_slot_[static_cast<std::size_t>(body)]; }
+  int body_at(int slot) const { return slots_[static_cast<std::size_t>(slot)].body; }
+  const std::vector<SlotKey>& slots() const { return slots_; }       // slot -> body
+  const std::vector<int>& body_slots() const { return body_slot_; }  // body -> slot
+
+  // Sorts the slots by (key, body) where `keys_changed` (set_key said so for some body since the last sort), and
+  // returns the intervals of slots [first, last] it permuted, each holding the same bodies as before (overlapping
+  // moves merged), in increasing order; slot_of() follows. Past a budget of moves (bodies crossing many others, or
+  // the first sort) a full sort, reported as one interval: the order is the same either way.
+  const std::vector<std::pair<int, int>>& sort(bool keys_changed);
+
+ private:
+  double cell_ = 1.0;                       // [m]
+  std::vector<SlotKey> slots_;              // slot -> body, sorted by (key, body)
+  std::vector<int> body_slot_;              // body -> slot
+  std::vector<std::pair<int, int>> moved_;  // what the last sort permuted
 };
 
 }  // namespace polyfloe::dynamics

@@ -139,7 +139,8 @@ bool SpatialWorld::apply_contact(const contact::ContactManifold& m, double dt, s
     const double kk = coef.k_n * m.count, mm = 1.0 / inv_m;
     const double rate = -k.normal.dot(vrel);
     const double v2 = rate * rate + 0.8 * kk * k.depth * k.depth * std::sqrt(k.depth) / mm;
-    k.duration = contact::hertz_contact_duration(kk, mm, std::sqrt(v2));
+    k.impact_speed = std::sqrt(v2);
+    k.duration = contact::hertz_contact_duration(kk, mm, k.impact_speed);
   }
   k.normal_force = normal_total;
   k.force = fn + ft;
@@ -212,6 +213,16 @@ void SpatialWorld::add_pair(PairResult& r) {
   contacts_.push_back(k);
 }
 
+void SpatialWorld::report_contacts() {
+  report_.deepest = DeepestOverlap{};
+  report_.shortest = ContactResolution{};
+  for (const SpatialContact& c : contacts_) {
+    const double r = std::min(shape_[c.a]->equivalent_radius(), shape_[c.b]->equivalent_radius());
+    report_.deepest.consider(c.depth, kOverlapLimit * r, c.a, c.b);
+    if (c.duration < report_.shortest.duration) report_.shortest = {c.duration, c.impact_speed, c.a, c.b};
+  }
+}
+
 void SpatialWorld::compute_forces(double dt) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
@@ -242,6 +253,7 @@ void SpatialWorld::compute_forces(double dt) {
     }
   }
   springs_.end_step();
+  report_contacts();
   forces_ready_ = true;
   profile_.forcing += std::chrono::duration<double>(t1 - t0).count();
   profile_.broad += std::chrono::duration<double>(t2 - t1).count();

@@ -78,6 +78,7 @@ int SpatialWorld::add_body(const SpatialBodyDesc& d) {
   z_hi_.push_back(0.0);
   update_world_vertices(i);
   forces_ready_ = false;
+  motion_ready_ = false;
   return i;
 }
 
@@ -141,7 +142,7 @@ void SpatialWorld::drift(double dt) {
   });
 }
 
-void SpatialWorld::step(double dt) {
+const StepReport& SpatialWorld::step(double dt) {
   using clock = std::chrono::steady_clock;
   if (!forces_ready_) compute_forces(dt);
   const auto t0 = clock::now();
@@ -155,6 +156,25 @@ void SpatialWorld::step(double dt) {
   kick(0.5 * dt);
   profile_.integrate += std::chrono::duration<double>(clock::now() - t1).count();
   ++profile_.steps;
+  motion_ready_ = false;
+  return report();
+}
+
+const StepReport& SpatialWorld::report() const {
+  if (motion_ready_) return report_;
+  MotionSummary& m = report_.motion;
+  m = MotionSummary{};
+  for (std::size_t i = 0; i < size(); ++i) {
+    const Vec3 w = angular_velocity(static_cast<int>(i));
+    m.all_finite &= pos_[i].allFinite() && q_[i].coeffs().allFinite() && vel_[i].allFinite() && w.allFinite();
+    if (!is_dynamic_[i]) continue;
+    const double v2 = vel_[i].squaredNorm();
+    m.max_speed2 = std::max(m.max_speed2, v2);
+    m.max_spin_speed = std::max(m.max_spin_speed, w.norm() * shape_[i]->circumradius());
+    m.energy += 0.5 * mass_[i] * v2 + 0.5 * w.dot(ang_mom_[i]);
+  }
+  motion_ready_ = true;
+  return report_;
 }
 
 void SpatialWorld::body_loads() {
@@ -227,6 +247,8 @@ void SpatialWorld::restore(const SpatialWorldState& s) {
   stats_.queries = s.narrow_phase_queries;
   stats_.primary_failures = s.narrow_phase_failures;
   contacts_.clear();
+  report_ = StepReport{};
+  motion_ready_ = false;
   for (std::size_t i = 0; i < n; ++i) update_world_vertices(static_cast<int>(i));
 }
 

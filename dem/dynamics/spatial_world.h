@@ -32,6 +32,7 @@
 #include "contact/narrow_phase_sat3d.h"
 #include "dynamics/body.h"
 #include "dynamics/state_fields.h"
+#include "dynamics/step_report.h"
 #include "geometry/polyhedron.h"
 
 namespace polyfloe::dynamics {
@@ -94,6 +95,7 @@ struct SpatialContact {
   // Hertz duration of this impact at the speed it implies (approach rate and stored energy,
   // v^2 = d_dot^2 + (4/5) k d^2.5 / m*, k = points x k_n): a step that does not resolve it is unstable [s].
   double duration = 0.0;
+  double impact_speed = 0.0;  // that speed v [m/s]
 };
 
 // Failures of a libccd narrow phase met so far, each answered by sat instead: queries it reported as failed,
@@ -146,8 +148,13 @@ class SpatialWorld {
   int add_body(const SpatialBodyDesc& desc);
   std::size_t size() const { return id_.size(); }
 
-  // Advance by dt [s]. Throws std::runtime_error naming the pair when neither narrow phase can measure a contact.
-  void step(double dt);
+  // Advance by dt [s] and report the step (dynamics/step_report.h). Throws std::runtime_error naming the pair when
+  // neither narrow phase can measure a contact.
+  const StepReport& step(double dt);
+  // The last step's report, as step() returned it; its motion summary anew after a change from outside (add_body,
+  // restore). Its overlap limit is kOverlapLimit x the smaller equivalent radius of a pair.
+  const StepReport& report() const;
+  static constexpr double kOverlapLimit = 0.25;
   void compute_forces(double dt);
 
   // Worker threads of step() (OpenMP; 1 = serial, the default). The result does not depend on it, bitwise: the
@@ -222,6 +229,8 @@ class SpatialWorld {
   Vec3 friction(const PairResult& r, const contact::PairCoefficients& coef, double normal_total, const Vec3& vrel,
                 double dt, std::size_t& hint, Vec3& spring) const;
   void add_pair(PairResult& r);
+  // The report's deepest overlap and shortest contact, from contacts_ (in pair order: the first of equals).
+  void report_contacts();
   // The threads of a loop of `items` items of about `ns_per_item` each: one below kParallelWork, where starting the
   // threads (a few microseconds) would cost more than they save; the result is the same either way.
   static constexpr double kParallelWork = 2e4;  // [ns]
@@ -262,6 +271,8 @@ class SpatialWorld {
   std::vector<SpatialContact> contacts_;
   contact::HistoryStore<Vec3> springs_;  // the tangential spring of each touching pair with friction [m]
   NarrowPhaseStats stats_;
+  mutable StepReport report_;  // see report()
+  mutable bool motion_ready_ = false;
 };
 
 }  // namespace polyfloe::dynamics

@@ -73,8 +73,8 @@ int World::add_body(const BodyDesc& d) {
   motion_.push_back(d.motion);
   is_dynamic_.push_back(dyn ? 1 : 0);
   if (dyn) dynamic_mass_ += mass_.back();
-  inverse_dt_ = 0.0;
-  summary_ready_ = false;
+  drift_.forget_inverses();
+  motion_ready_ = false;
   pos_.push_back(d.position);
   yaw_.push_back(d.yaw);
   vel_.push_back(d.motion == Motion::fixed ? Vec2{0.0, 0.0} : d.velocity);
@@ -94,15 +94,14 @@ int World::add_body(const BodyDesc& d) {
   if (dyn) {
     radius_sum_ += d.shape->equivalent_radius();
     ++dynamic_count_;
-    order_cell_ = geometry::space_order_cell(radius_sum_ / dynamic_count_);
+    order_.set_cell(geometry::space_order_cell(radius_sum_ / dynamic_count_));
   }
   lists_.set_skin(settings_.broad_phase_skin > 0.0 ? settings_.broad_phase_skin
                   : dynamic_count_ > 0             ? 0.2 * radius_sum_ / dynamic_count_
                                                    : 1.0);
   reach_.push_back(d.shape->circumradius());
   lists_.invalidate();  // rebuilt at the next evaluation
-  slots_.push_back({~std::uint64_t{0}, i});
-  body_slot_.push_back(i);
+  order_.add(i);
   slot_static_.push_back(slot_static_of(i, vert_begin_[i]));
   slot_dynamic_.push_back(is_dynamic_[i]);
   boxes_.emplace_back();
@@ -131,7 +130,7 @@ void World::set_velocity(int i, const Vec2& v, double omega) {
   vel_[i] = v;
   omega_[i] = omega;
   forces_ready_ = false;
-  summary_ready_ = false;
+  motion_ready_ = false;
 }
 
 void World::set_external_load(int i, const Vec2& force, double torque) {
@@ -140,7 +139,7 @@ void World::set_external_load(int i, const Vec2& force, double torque) {
   forces_ready_ = false;
 }
 
-void World::step(double dt) {
+const StepReport& World::step(double dt) {
   using clock = std::chrono::steady_clock;
   if (!forces_ready_) compute_forces(0.0);
   auto t0 = clock::now();
@@ -156,6 +155,7 @@ void World::step(double dt) {
   time_ += dt;
   ++steps_;
   ++profile_.steps;
+  return report_;
 }
 
 void World::compute_forces(double dt) { evaluate_forces(dt, false); }
@@ -176,22 +176,22 @@ void World::evaluate_forces(double dt, bool shapes) {
   const int n_int = static_cast<int>(n);
   const auto t0 = clock::now();
   // Between full evaluations of the drift loads (DriftSettings::update_every), each body's load comes from the
-  // last one's linear model F_d(v) = b - D v (b = lin_force_, lin_torque_; D and m f kept in drift_load_) at the
+  // last one's linear model F_d(v) = b - D v (dynamics/drift_model.h) at the
   // velocity predicted here, in the same pass.
   // With `shapes` (a step, after the slots were sorted) the same pass first moves each body's world-frame vertices
   // and box; and it gathers the contact stage's packed state by slot.
-  const bool linear = drift_from_linear_model(dt);
+  const bool linear = drift_.linear_step(settings_.drift, steps_, dt, n);
   slot_state_.resize(n);
   // The damped inverses for this dt, where none are kept (the drag matrices of the last full evaluation).
-  const bool refill = half_dt > 0.0 && inverse_dt_ != dt;
-  inverse_.resize(n);
+  const bool refill = drift_.begin_inverses(n, dt);
   POLYFLOE_OMP_FOR(threads_)
   for (int ii = 0; ii < n_int; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (shapes && motion_[i] != Motion::fixed) update_shape(ii);
-    if (half_dt > 0.0 && i < lin_force_.size() && drift_load_[i].has_damping()) {
-      if (refill) inverse_[i] = damped_inverse(drift_load_[i], dt, mass_[i], inertia_[i]);
-      const BodyVelocity v = implicit_velocity(i, dt, inverse_[i]);
+    if (half_dt > 0.0 && drift_.has_linear_model(i) && drift_.load(i).has_damping()) {
+      if (refill) drift_.keep_inverse(i, dt, mass_[i], inertia_[i]);
+      const DriftModel::Velocity v = drift_.implicit_velocity(i, dt, drift_.kept_inverse(i), mass_[i], inertia_[i],
+                                                              vel_[i], omega_[i], force_[i], torque_[i]);
       vel_eval_[i] = v.u;
       omega_eval_[i] = v.w;
     } else {
@@ -200,14 +200,14 @@ void World::evaluate_forces(double dt, bool shapes) {
     }
     force_[i] = ext_force_[i];
     torque_[i] = ext_torque_[i];
-    if (linear && is_dynamic_[i] && drift_load_[i].has_damping()) {
-      set_linear_drift_load(i, vel_eval_[i], omega_eval_[i]);
-      force_[i] += drift_load_[i].force;
-      torque_[i] += drift_load_[i].torque;
+    if (linear && is_dynamic_[i] && drift_.load(i).has_damping()) {
+      drift_.set_linear_load(i, vel_eval_[i], omega_eval_[i]);
+      force_[i] += drift_.load(i).force;
+      torque_[i] += drift_.load(i).torque;
     }
-    slot_state_[static_cast<std::size_t>(body_slot_[i])] = {pos_[i], vel_eval_[i], omega_eval_[i]};
+    slot_state_[static_cast<std::size_t>(order_.slot_of(ii))] = {pos_[i], vel_eval_[i], omega_eval_[i]};
   }
-  if (refill) inverse_dt_ = dt;
+  if (refill) drift_.set_inverses_dt(dt);
   const auto t_pass = clock::now();
   // (a step's profile counts this pass with the shapes; compute_forces from outside, with the drift forces)
   if (shapes) profile_.shapes += std::chrono::duration<double>(t_pass - t0).count();
@@ -222,22 +222,16 @@ void World::evaluate_forces(double dt, bool shapes) {
     forces_ready_ = true;
     return;
   }
-  lin_force_.resize(n, Vec2{0.0, 0.0});  // bodies without drift damping keep 0 (never read)
-  lin_torque_.resize(n, 0.0);
+  drift_.resize_linear_model(n);
   // With the new drag matrices, their damped inverses for this dt (the final kick's and the next steps').
   POLYFLOE_OMP_FOR(threads_)
   for (int ii = 0; ii < n_int; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const forcing::DriftLoad& d = drift_load_[i];
-    if (!d.has_damping()) continue;
-    const Vec2& vs = vel_eval_[i];
-    const double ws = omega_eval_[i];
-    const Eigen::Vector3d dv = d.damping_times(vs, ws);
-    lin_force_[i] = d.force + dv.head<2>();
-    lin_torque_[i] = d.torque + dv.z();
-    if (half_dt > 0.0) inverse_[i] = damped_inverse(d, dt, mass_[i], inertia_[i]);
+    if (!drift_.load(i).has_damping()) continue;
+    drift_.fit_linear_model(i, vel_eval_[i], omega_eval_[i]);
+    if (half_dt > 0.0) drift_.keep_inverse(i, dt, mass_[i], inertia_[i]);
   }
-  inverse_dt_ = half_dt > 0.0 ? dt : 0.0;
+  drift_.set_inverses_dt(half_dt > 0.0 ? dt : 0.0);
   forces_ready_ = true;
 }
 
@@ -267,17 +261,6 @@ double World::max_speed() const {
   for (std::size_t i = 0; i < size(); ++i)
     if (is_dynamic_[i]) v = std::max(v, vel_[i].norm());
   return v;
-}
-
-World::ContactResolution World::shortest_active_contact() const {
-  ContactResolution r;
-  if (worst_a_ < 0 || !(worst_q2_ > 0.0)) return r;
-  // t_c = 3.2181 (m*/k_n)^(2/5) v^(-1/5) = 3.2181 (v^2 (k_n/m*)^4)^(-1/10)
-  r.duration = 3.2181 * std::pow(worst_q2_, -0.1);
-  r.impact_speed = std::sqrt(worst_v2_);
-  r.a = worst_a_;
-  r.b = worst_b_;
-  return r;
 }
 
 double World::shortest_hertz_contact_duration(double speed) const {
@@ -326,9 +309,9 @@ WorldState World::state() const {
   s.omega = omega_;
   s.torque = torque_;
   s.external_torque = ext_torque_;
-  s.drift_load = drift_load_;
-  s.lin_force = lin_force_;
-  s.lin_torque = lin_torque_;
+  s.drift_load = drift_.loads();
+  s.lin_force = drift_.linear_force();
+  s.lin_torque = drift_.linear_torque();
   s.contact_history = cache_.entries();
   if (bonds_) s.bonds = bonds_->state();
   s.bonds_failed_last = bonds_failed_last_;
@@ -368,22 +351,17 @@ void World::restore(const WorldState& s) {
   omega_ = s.omega;
   torque_ = s.torque;
   ext_torque_ = s.external_torque;
-  drift_load_ = s.drift_load;
-  inverse_dt_ = 0.0;  // the drag matrices changed
-  lin_force_ = s.lin_force;
-  lin_torque_ = s.lin_torque;
+  drift_.restore(s.drift_load, s.lin_force, s.lin_torque);
   cache_.restore(s.contact_history);
   bonds_failed_last_ = s.bonds_failed_last;
   contacts_.clear();
   contacts_ready_ = true;
   contact_count_ = 0;
-  deepest_ = DeepestOverlap{};
-  worst_q2_ = worst_v2_ = 0.0;
-  worst_a_ = worst_b_ = -1;
+  report_ = StepReport{};
   update_shapes();
   forces_ready_ = s.forces_ready;
   lists_.forget_kick_verdict();  // the poses changed since any kick tested them
-  summary_ready_ = false;
+  motion_ready_ = false;
 }
 
 }  // namespace polyfloe::dynamics

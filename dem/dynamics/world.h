@@ -21,9 +21,11 @@
 #include "contact/narrow_phase_gjk2d.h"
 #include "contact/narrow_phase_planar.h"
 #include "dynamics/body.h"
+#include "dynamics/drift_model.h"
 #include "dynamics/neighbour_lists.h"
 #include "dynamics/slots.h"
 #include "dynamics/state_fields.h"
+#include "dynamics/step_report.h"
 #include "forcing/drift.h"
 
 namespace polyfloe::dynamics {
@@ -139,8 +141,10 @@ class World {
   std::size_t size() const { return id_.size(); }
 
   // Advance by dt [s]: velocity-Verlet (kick, move, kick), forces evaluated at the new positions with the
-  // half-step velocities.
-  void step(double dt);
+  // half-step velocities. Returns the step's report: the bodies' motion (gathered in the final kick's loop, no
+  // pass of its own; its energy summed in fixed blocks of bodies, so any thread count gives the same bits), the
+  // deepest overlap and the shortest contact of the force evaluation.
+  const StepReport& step(double dt);
 
   // Worker threads of step() (OpenMP; 1 = serial, the default). The result does not depend on it, bitwise: the
   // per-body stages write only their own body, and the contact stage evaluates every candidate pair apart, then
@@ -191,30 +195,10 @@ class World {
   // Listed from the last evaluation when first asked for after it (not safe to call from several threads at once).
   const std::vector<ContactRecord>& contacts() const;
   std::size_t contact_count() const { return contact_count_; }
-  // The contact of the last force evaluation whose depth is the largest fraction of half the smaller equivalent
-  // radius of its two bodies (the run guard stops a run where that fraction exceeds 1); ratio 0 and a = b = -1
-  // when there is no contact.
-  struct DeepestOverlap {
-    double ratio = 0.0;  // depth / limit [-]
-    double depth = 0.0;  // [m]
-    double limit = 0.0;  // 0.5 x min(equivalent radius of a, of b) [m]
-    int a = -1, b = -1;  // body indices
-  };
-  const DeepestOverlap& deepest_overlap() const { return deepest_; }
   const contact::ContactCache& contact_cache() const { return cache_; }
   // Pairs the 2-D GJK-EPA narrow phase failed on (measured by the exact method instead), since the start.
   std::uint64_t narrow_phase_failures() const { return narrow_phase_failures_; }
   contact::ContactCache& contact_cache() { return cache_; }
-
-  // The shortest Hertz contact duration implied by the contacts of the last force evaluation: each contact's
-  // impact speed is estimated from its approach rate and its stored elastic energy,
-  // v^2 = d_dot^2 + (4/5) k_n d^2.5 / m*. A step that does not resolve it (t_c < a few dt) is unstable.
-  struct ContactResolution {
-    double duration = contact::kInfinite;  // [s]
-    double impact_speed = 0.0;             // [m/s]
-    int a = -1, b = -1;                    // body indices of that contact
-  };
-  ContactResolution shortest_active_contact() const;
 
   // --- diagnostics ---
   double kinetic_energy() const;    // dynamic bodies, translation + rotation [J]
@@ -222,17 +206,11 @@ class World {
   double angular_momentum() const;  // about the origin, z [kg m^2/s]
   double max_speed() const;         // [m/s]
 
-  // The bodies' motion at the end of the last step, for the run guard (run/simulation.h): gathered in the final
-  // kick's loop (no pass of its own), or anew when asked for after a change from outside (add_body, set_velocity,
-  // restore). The energy is summed in fixed blocks of bodies, so any thread count gives the same bits.
-  struct MotionSummary {
-    bool all_finite = true;       // every body's position, yaw, velocity and angular velocity
-    double max_speed2 = 0.0;      // the largest |v|^2 of a dynamic body [m^2/s^2]
-    double max_spin_speed = 0.0;  // the largest |omega| x circumradius of a dynamic body [m/s]
-    double energy = 0.0;          // kinetic energy of the dynamic bodies, translation + rotation [J]
-    void merge(const MotionSummary& o);
-  };
-  const MotionSummary& motion_summary() const;
+  // The last step's report (dynamics/step_report.h), as step() returned it; its motion summary anew after a
+  // change from outside (add_body, set_velocity, restore). Its overlap limit is kOverlapLimit x the smaller
+  // equivalent radius of a pair.
+  const StepReport& report() const;
+  static constexpr double kOverlapLimit = 0.5;
   double dynamic_mass() const { return dynamic_mass_; }  // [kg], summed in body order
 
   // Duration of the shortest Hertz impact between the bodies present (smallest dynamic mass and radius) at
@@ -267,34 +245,13 @@ class World {
   void add_motion(std::size_t i, MotionSummary& s) const;  // body i's share of the motion summary
   static constexpr int kSummaryBlock = 64;                 // bodies per block of the motion summary's sums
   void kick_implicit(double dt);
-  struct BodyVelocity {
-    Vec2 u;    // [m/s]
-    double w;  // [rad/s]
-  };
-  // The inverse of A = M + dt D_drag + dt/2 C for a body (D_drag and C, Coriolis, the parts of the damping matrix
-  // of `d`), as its adjugate (row-major) and 1/det(A); applied to (p, p_w) it solves A v = (p, p_w) for the body
-  // velocity v = (u, w). A changes only with D (a full drift evaluation) and dt, so the step keeps it per body.
-  struct DampedInverse {
-    double adj[9];
-    double inv_det;
-  };
-  static DampedInverse damped_inverse(const forcing::DriftLoad& d, double dt, double mass, double inertia);
-  static BodyVelocity apply(const DampedInverse& a, const Vec2& p, double p_w);
-  // Body i's velocity after the final kick of a step of dt, from its half-kicked velocity (see integrate.cpp);
-  // `a` its damped_inverse for dt.
-  BodyVelocity implicit_velocity(std::size_t i, double dt, const DampedInverse& a) const;
-  // damped_inverse of body i for dt: the kept one where it holds (inverse_dt_ == dt), else computed.
-  DampedInverse inverse_of(std::size_t i, double dt) const {
-    return dt == inverse_dt_ ? inverse_[i] : damped_inverse(drift_load_[i], dt, mass_[i], inertia_[i]);
-  }
   void update_shapes();
   void update_shape(int i);
   // Re-sorts the contact stage's slots (below) by the bodies' current positions and lays out the moved ones anew.
   // The slots in order of their keys (set by kick_and_move() or set_slot_keys(); `keys_changed`: whether any
   // changed since the last sort).
   void sort_slots(bool keys_changed);
-  bool set_slot_key(int i);  // body i's slot key at its position; whether it changed
-  bool set_slot_keys();      // every body's; whether any changed
+  bool set_slot_keys();  // every body's slot key at its position; whether any changed
   // Body i's packed slot data, its vertices starting at `vert_begin` in world_xy_.
   SlotStatic slot_static_of(int i, int vert_begin) const;
   void contact_forces(double dt);
@@ -302,11 +259,6 @@ class World {
   void sum_contacts(int n);
   // The slots as the neighbour lists read them.
   SlotView slot_view() const;
-  // Whether this evaluation's drift loads come from the last full evaluation's linear model
-  // (DriftSettings::update_every).
-  bool drift_from_linear_model(double dt) const;
-  // Body i's drift load from the linear model at velocity (u, w): drift_load_[i].force, torque = b - D (u, w).
-  void set_linear_drift_load(std::size_t i, const Vec2& u, double w);
   // The full evaluation of every body's drift load (the steps between full evaluations take the linear model in
   // compute_forces' first loop).
   void drift_forces(double t);
@@ -338,12 +290,8 @@ class World {
   std::vector<int> quad_off_{0};           // body i's bottom/top quadrature points: quad_off_[i] .. quad_off_[i+1]-1
   std::vector<double> quad_lx_, quad_ly_;  // body-frame lever of each point from the centroid [m]
   std::vector<double> quad_weight_;        // area carried [m^2]
-  // drift, where treated semi-implicitly: the drift part of force_/torque_ with the damping matrix of the last
-  // evaluation (drag with frozen speed factors, Coriolis) ...
-  std::vector<forcing::DriftLoad> drift_load_;
-  // ... and that linear model's drift load at v = 0, b in F_d(v) = b - D v [N, N m]
-  std::vector<Vec2> lin_force_;
-  std::vector<double> lin_torque_;
+  // The drift forcing's loads, their linear model and the final kick's damped inverses (dynamics/drift_model.h).
+  DriftModel drift_;
   std::vector<Motion> motion_;
   std::vector<std::uint8_t> is_dynamic_;
   // world-frame shapes, refreshed after each move
@@ -353,18 +301,13 @@ class World {
   std::vector<Vec2> local_xy_;  // body-frame vertices, in body order (vert_off_): read without a pointer chase
   std::vector<Vec2> rotation_;  // (cos yaw, sin yaw) of the world-frame shape
 
-  // The contact stage works on "slots": the bodies sorted by position (cells of order_cell_ numbered tile by tile,
-  // as the broad phase numbers its cells; ties by index), so that bodies close in space are close in memory
-  // whatever order they were added in. The order is
-  // a function of the current positions alone (restarts reproduce it) and is re-sorted every step (insertion sort
-  // from the last order: O(N) while floes keep their neighbours). Indices stay the public handle; slots are
-  // private to the step. World-frame vertices and boxes are stored in slot order.
-  double order_cell_ = 1.0;  // [m], 4 x the mean equivalent radius of the dynamic bodies
+  // The contact stage works on "slots": the bodies sorted by position (dynamics/slots.h), so that bodies close in
+  // space are close in memory whatever order they were added in; re-sorted every step. Indices stay the public
+  // handle; slots are private to the step. World-frame vertices and boxes are stored in slot order. The order's
+  // cell is 4 x the mean equivalent radius of the dynamic bodies.
+  SlotOrder order_;
   double radius_sum_ = 0.0;  // of the dynamic bodies [m]
   int dynamic_count_ = 0;
-  std::vector<SlotKey> slots_;              // slot -> body, sorted by (key, body)
-  std::vector<int> body_slot_;              // body -> slot
-  std::vector<std::pair<int, int>> moved_;  // slot intervals [first, last] the last sort permuted
   std::vector<SlotStatic> slot_static_;
   std::vector<SlotState> slot_state_;
   std::vector<std::uint8_t> slot_dynamic_;
@@ -382,16 +325,11 @@ class World {
   mutable std::vector<ContactRecord> contacts_;  // listed on demand (contacts())
   mutable bool contacts_ready_ = true;
   std::size_t contact_count_ = 0;
-  DeepestOverlap deepest_;
   double dynamic_mass_ = 0.0;  // [kg]
-  // Each damped body's damped_inverse for the drag matrix it has now and the step inverse_dt_ [s] (0: none kept;
-  // cleared where the drag matrices change: a full drift evaluation, a restore, a new body).
-  std::vector<DampedInverse> inverse_;
-  double inverse_dt_ = 0.0;
-  mutable MotionSummary summary_;  // see motion_summary()
-  mutable bool summary_ready_ = false;
+  mutable StepReport report_;  // see report()
+  mutable bool motion_ready_ = false;
   mutable std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
-  void merge_motion_blocks() const;                   // motion_blocks_ into summary_, in block order
+  void merge_motion_blocks() const;                   // motion_blocks_ into report_.motion, in block order
   // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
   struct PairResult {
     bool hit = false;
@@ -467,9 +405,6 @@ class World {
   void add_surface_drift(std::size_t i, const DriftStage& stage, const forcing::FloeMotion& m, DriftScratch& scratch,
                          forcing::DriftLoad& load) const;
   std::size_t max_quad_points_ = 0, max_vertices_ = 0;
-  double worst_q2_ = 0.0;  // max over contacts of v^2 (k_n/m*)^4: the shortest contact has the largest
-  double worst_v2_ = 0.0;
-  int worst_a_ = -1, worst_b_ = -1;
   StepProfile profile_;
   std::uint64_t narrow_phase_failures_ = 0;
 };

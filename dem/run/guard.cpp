@@ -4,55 +4,92 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 namespace polyfloe::run {
 
-void check_contact_resolution(const dynamics::World& w, double dt) {
-  std::ostringstream why;
-  const dynamics::World::ContactResolution r = w.shortest_active_contact();
-  if (r.a >= 0 && r.duration < dynamics::kMinStepsPerContact * dt) {
-    why << "the contact between bodies " << w.id(r.a) << " and " << w.id(r.b) << " at t = " << w.time() << " s (step "
-        << w.step_count() << ") has an impact speed of about " << r.impact_speed << " m/s, so it lasts " << r.duration
-        << " s: only " << r.duration / dt << " time steps of dt = " << dt << " s (at least "
-        << dynamics::kMinStepsPerContact << " are needed, 40 for accuracy). Set run.reference_speed to "
-        << r.impact_speed << " (the automatic time step then resolves such impacts), or run.dt to " << r.duration / 40.0
-        << ".";
-    throw InstabilityError(why.str());
-  }
-}
-
 namespace {
 
-void check_deepest_overlap(const dynamics::World& w, double dt) {
-  // The deepest overlap against half the smaller floe's radius (tracked by the World in its contact sum).
-  if (const dynamics::World::DeepestOverlap& c = w.deepest_overlap(); c.ratio > 1.0) {
-    std::ostringstream why;
-    why << "bodies " << w.id(c.a) << " and " << w.id(c.b) << " overlap by " << c.depth
-        << " m (more than half the smaller floe's radius, " << c.limit << " m) at t = " << w.time() << " s (step "
-        << w.step_count() << "). The contact is too soft or the time step too large for the impact speeds: set "
-        << "run.dt to " << 0.25 * dt << ", or raise run.reference_speed or run.steps_per_contact.";
-    throw InstabilityError(why.str());
-  }
+// One body's motion, as the guard searches the bodies for the one to name.
+struct BodyMotion {
+  bool finite = true;    // position, orientation, velocity and angular velocity
+  bool dynamic = false;  // (kinematic bodies move as the scene prescribes)
+  double speed = 0.0;    // |v| + |omega| x circumradius [m/s]
+  double energy = 0.0;   // kinetic energy [J]
+};
+
+BodyMotion body_motion(const dynamics::World& w, int i) {
+  const auto k = static_cast<std::size_t>(i);
+  const geometry::Vec2 p = w.positions()[k], v = w.velocities()[k];
+  const double om = w.angular_velocities()[k];
+  BodyMotion m;
+  m.finite = std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(v.x()) && std::isfinite(v.y()) &&
+             std::isfinite(om) && std::isfinite(w.yaws()[k]);
+  m.dynamic = w.motion(i) == dynamics::Motion::dynamic;
+  if (!m.finite) return m;
+  m.speed = v.norm() + std::abs(om) * w.shape(i).circumradius();
+  m.energy = 0.5 * w.mass(i) * v.squaredNorm() + 0.5 * w.inertia(i) * om * om;
+  return m;
+}
+
+BodyMotion body_motion(const dynamics::SpatialWorld& w, int i) {
+  const dynamics::Vec3 v = w.velocity(i), om = w.angular_velocity(i);
+  BodyMotion m;
+  m.finite = w.position(i).allFinite() && w.orientation(i).coeffs().allFinite() && v.allFinite() && om.allFinite();
+  m.dynamic = w.motion(i) == dynamics::Motion::dynamic;
+  if (!m.finite) return m;
+  const dynamics::Mat3 rot = w.orientation(i).toRotationMatrix();
+  m.speed = v.norm() + om.norm() * w.shape(i).circumradius();
+  m.energy = 0.5 * w.mass(i) * v.squaredNorm() + 0.5 * om.dot(rot * w.body_inertia(i) * rot.transpose() * om);
+  return m;
+}
+
+template <class W>
+void check_deepest_overlap(const W& w, const dynamics::DeepestOverlap& c, double dt) {
+  if (c.ratio <= 1.0) return;
+  std::ostringstream why;
+  why << "bodies " << w.id(c.a) << " and " << w.id(c.b) << " overlap by " << c.depth << " m (more than "
+      << (W::kOverlapLimit == 0.5 ? "half" : "a quarter of") << " the smaller body's equivalent radius, " << c.limit
+      << " m) at t = " << w.time() << " s (step " << w.step_count() << "). The contact is too soft or the time step "
+      << "too large for the impact speeds: set run.dt to " << 0.25 * dt
+      << ", or raise run.reference_speed or run.steps_per_contact.";
+  throw InstabilityError(why.str());
 }
 
 }  // namespace
 
-void check_stability(const dynamics::World& w, double dt, double reference_speed) {
-  check_contact_resolution(w, dt);
-  // Runaway: far faster than anything the forcing or the impacts can produce.
-  const double speed_limit = std::max(50.0, 20.0 * reference_speed);
-  const double energy_limit =
-      0.5 * w.dynamic_mass() * 100.0 * std::max(1.0, reference_speed) * std::max(1.0, reference_speed);
-  // The World's summary of the step (gathered in its final kick) clears the bodies at once; only a state it
-  // cannot clear is searched body by body below, for the body to name (and decides by itself).
-  if (const dynamics::World::MotionSummary& s = w.motion_summary();
+template <class W>
+void check_contact_resolution(const W& w, const dynamics::StepReport& report, double dt) {
+  const dynamics::ContactResolution& r = report.shortest;
+  if (r.a < 0 || r.duration >= dynamics::kMinStepsPerContact * dt) return;
+  std::ostringstream why;
+  why << "the contact between bodies " << w.id(r.a) << " and " << w.id(r.b) << " at t = " << w.time() << " s (step "
+      << w.step_count() << ") has an impact speed of about " << r.impact_speed << " m/s, so it lasts " << r.duration
+      << " s: only " << r.duration / dt << " time steps of dt = " << dt << " s (at least "
+      << dynamics::kMinStepsPerContact << " are needed, 40 for accuracy). Set run.reference_speed to " << r.impact_speed
+      << " (the automatic time step then resolves such impacts), or run.dt to " << r.duration / 40.0 << ".";
+  throw InstabilityError(why.str());
+}
+
+template <class W>
+void check_stability(const W& w, const dynamics::StepReport& r, double dt, double reference_speed) {
+  check_contact_resolution(w, r, dt);
+  // Runaway: far faster than anything the forcing or the impacts can produce. (Not in space: bodies falling under
+  // gravity gain speed that the scene's reference speed does not bound; there the overlap and the contact
+  // resolution checks stop a step too large for the speeds reached.)
+  double speed_limit = contact::kInfinite, energy_limit = contact::kInfinite;
+  if constexpr (std::is_same_v<W, dynamics::World>) {
+    const double ref = std::max(1.0, reference_speed);
+    speed_limit = std::max(50.0, 20.0 * reference_speed);
+    energy_limit = 0.5 * w.dynamic_mass() * 100.0 * ref * ref;
+  }
+  // The report's summary of the step clears the bodies at once; only a state it cannot clear is searched body by
+  // body below, for the body to name (and decides by itself).
+  if (const dynamics::MotionSummary& s = r.motion;
       s.all_finite && std::sqrt(s.max_speed2) + s.max_spin_speed <= speed_limit && s.energy <= energy_limit) {
-    check_deepest_overlap(w, dt);
+    check_deepest_overlap(w, r.deepest, dt);
     return;
   }
-  const auto pos = w.positions();
-  const auto vel = w.velocities();
-  const auto om = w.angular_velocities();
   std::ostringstream why;
   auto advice = [&] {
     why << " at t = " << w.time() << " s (step " << w.step_count() << "). The time step dt = " << dt
@@ -63,68 +100,37 @@ void check_stability(const dynamics::World& w, double dt, double reference_speed
   // Runaway energy: the kinetic energy of the dynamic bodies beyond what they would have all moving at 10 x the
   // reference speed (an instability that grows in many bodies at once, before any one reaches the speed limit).
   double energy = 0.0, worst = 0.0;
-  std::size_t worst_body = 0;
-  for (std::size_t i = 0; i < w.size(); ++i) {
-    const int b = static_cast<int>(i);
-    const bool dynamic = w.motion(b) == dynamics::Motion::dynamic;
-    const bool finite = std::isfinite(pos[i].x()) && std::isfinite(pos[i].y()) && std::isfinite(vel[i].x()) &&
-                        std::isfinite(vel[i].y()) && std::isfinite(om[i]) && std::isfinite(w.yaws()[i]);
-    const double speed = finite ? vel[i].norm() + std::abs(om[i]) * w.shape(b).circumradius() : 0.0;
-    if (!finite) {
-      why << "body " << w.id(b) << " has a non-finite state (NaN or Inf)";
-    } else if (dynamic && speed > speed_limit) {  // kinematic bodies move as the scene prescribes
-      why << "body " << w.id(b) << " moves at " << speed << " m/s (limit " << speed_limit
-          << " m/s = max(50, 20 x reference speed))";
-    } else {
-      if (dynamic) {
-        const double e = 0.5 * w.mass(b) * vel[i].squaredNorm() + 0.5 * w.inertia(b) * om[i] * om[i];
-        energy += e;
-        if (e > worst) {
-          worst = e;
-          worst_body = i;
-        }
-      }
-      continue;
+  int worst_body = 0;
+  for (int i = 0; i < static_cast<int>(w.size()); ++i) {
+    const BodyMotion m = body_motion(w, i);
+    if (!m.finite) {
+      why << "body " << w.id(i) << " has a non-finite state (NaN or Inf)";
+      advice();
     }
-    advice();
+    if (!m.dynamic) continue;
+    if (m.speed > speed_limit) {
+      why << "body " << w.id(i) << " moves at " << m.speed << " m/s (limit " << speed_limit
+          << " m/s = max(50, 20 x reference speed))";
+      advice();
+    }
+    energy += m.energy;
+    if (m.energy > worst) {
+      worst = m.energy;
+      worst_body = i;
+    }
   }
   if (energy > energy_limit) {
     why << "the kinetic energy of the ice, " << energy << " J, exceeds " << energy_limit
-        << " J (every floe at 10 x the reference speed; the most energetic is body "
-        << w.id(static_cast<int>(worst_body)) << " with " << worst << " J): runaway energy";
+        << " J (every floe at 10 x the reference speed; the most energetic is body " << w.id(worst_body) << " with "
+        << worst << " J): runaway energy";
     advice();
   }
-  check_deepest_overlap(w, dt);
+  check_deepest_overlap(w, r.deepest, dt);
 }
 
-void check_stability(const dynamics::SpatialWorld& w, double dt) {
-  for (int i = 0; i < static_cast<int>(w.size()); ++i) {
-    if (!w.position(i).allFinite() || !w.velocity(i).allFinite() || !w.angular_velocity(i).allFinite()) {
-      std::ostringstream m;
-      m << "body " << w.id(i) << " has a non-finite position or velocity at t = " << w.time() << " s (dt = " << dt
-        << " s); lower run.dt or raise run.steps_per_contact";
-      throw InstabilityError(m.str());
-    }
-  }
-  for (const auto& c : w.contacts()) {
-    if (c.duration < dynamics::kMinStepsPerContact * dt) {
-      std::ostringstream m;
-      m << "the contact of bodies " << w.id(c.a) << " and " << w.id(c.b) << " at t = " << w.time() << " s lasts about "
-        << c.duration << " s, fewer than " << dynamics::kMinStepsPerContact << " steps of dt = " << dt
-        << " s: lower run.dt to " << c.duration / 40.0
-        << " s or less, or raise run.reference_speed (the automatic step divides the contact duration at that speed)";
-      throw InstabilityError(m.str());
-    }
-    const double r = std::min(w.shape(c.a).equivalent_radius(), w.shape(c.b).equivalent_radius());
-    if (c.depth > 0.25 * r) {
-      std::ostringstream m;
-      m << "bodies " << w.id(c.a) << " and " << w.id(c.b) << " overlap by " << c.depth << " m at t = " << w.time()
-        << " s, more than a quarter of the smaller body's radius (" << r << " m): the step dt = " << dt
-        << " s does not resolve the contact; try run.dt = " << dt / 4 << " s or a larger run.steps_per_contact"
-        << " (or a larger run.reference_speed when bodies speed up under gravity)";
-      throw InstabilityError(m.str());
-    }
-  }
-}
+template void check_contact_resolution(const dynamics::World&, const dynamics::StepReport&, double);
+template void check_contact_resolution(const dynamics::SpatialWorld&, const dynamics::StepReport&, double);
+template void check_stability(const dynamics::World&, const dynamics::StepReport&, double, double);
+template void check_stability(const dynamics::SpatialWorld&, const dynamics::StepReport&, double, double);
 
 }  // namespace polyfloe::run

@@ -1,10 +1,13 @@
-// The run guard: after every step, a state that is not finite, runs away, or resolves a contact in too few steps
-// stops the run with a message that names the bodies, the time and what to change.
+// The run guard: after every step, a state that is not finite, runs away, resolves a contact in too few steps or
+// overlaps too deeply stops the run with a message that names the bodies, the time and what to change. One guard
+// for both worlds: it reads the step's report (dynamics/step_report.h) and, only where the report does not clear
+// the step, the bodies one by one for the one to name.
 #pragma once
 
 #include <stdexcept>
 
 #include "dynamics/spatial_world.h"
+#include "dynamics/step_report.h"
 #include "dynamics/world.h"
 
 namespace polyfloe::run {
@@ -15,17 +18,16 @@ class InstabilityError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Checks the state for NaN/Inf and runaway motion; throws InstabilityError with a suggestion. `dt` is the step in
-// use, `reference_speed` the scene's impact speed [m/s].
-void check_stability(const dynamics::World& world, double dt, double reference_speed);
-// The O(1) part, run every step: the shortest contact in progress must last at least dynamics::kMinStepsPerContact
-// (10) steps (Hertz duration at
-// the impact speed the contact implies).
-void check_contact_resolution(const dynamics::World& world, double dt);
-
-// Non-finite state, a contact resolved by fewer than dynamics::kMinStepsPerContact steps, or an overlap deeper than
-// a quarter of the smaller body's equivalent radius: throws InstabilityError naming the bodies, the time and the
-// step to use.
-void check_stability(const dynamics::SpatialWorld& world, double dt);
+// Throws InstabilityError with a suggestion where the step reported by `r` (world.step()'s or world.report()) has
+// a contact resolved by fewer than dynamics::kMinStepsPerContact steps (Hertz duration at the impact speed the
+// contact implies), a non-finite body, a dynamic body faster than max(50, 20 x reference_speed), more kinetic
+// energy than every dynamic body at 10 x max(1 m/s, reference_speed), or an overlap deeper than the world's limit
+// (W::kOverlapLimit x the smaller equivalent radius of the pair). `dt` is the step in use [s], `reference_speed`
+// the scene's impact speed [m/s]. W: dynamics::World or dynamics::SpatialWorld.
+template <class W>
+void check_stability(const W& world, const dynamics::StepReport& r, double dt, double reference_speed);
+// Its first check alone (O(1)).
+template <class W>
+void check_contact_resolution(const W& world, const dynamics::StepReport& r, double dt);
 
 }  // namespace polyfloe::run

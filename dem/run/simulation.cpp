@@ -224,13 +224,11 @@ void print_contact_search(const dynamics::World& world) {
 }  // namespace
 
 template <class W>
-void BasicSimulation<W>::guard() {
-  // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check
-  // costs a few ns per body against ~200 ns per body for the step.
-  if constexpr (kPlanar<W>) {
-    check_stability(world_, dt_, reference_speed_);
-  } else {
-    check_stability(world_, dt_);
+void BasicSimulation<W>::guard(const dynamics::StepReport& report) {
+  // Every step: a contact can start and end, and unstable drag can overflow, within a few steps. The check reads
+  // the step's report (O(1)); only a step it does not clear is searched body by body.
+  check_stability(world_, report, dt_, reference_speed_);
+  if constexpr (!kPlanar<W>) {
     if (!world_.contacts().empty()) {
       if (!summary_.first_contact) summary_.first_contact = world_.time();
       ++summary_.contact_steps;
@@ -252,8 +250,7 @@ RunSummary BasicSimulation<W>::run() {
   // Steps of dt, landing on every frame time and on the end time (FrameClock).
   try {
     while (!outputs.at_end(world_.time())) {
-      world_.step(outputs.step(world_.time()));
-      guard();
+      guard(world_.step(outputs.step(world_.time())));
       outputs.after_step(world_);
       progress.update(world_.time(), world_.step_count());
     }

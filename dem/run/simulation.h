@@ -99,7 +99,8 @@ class BasicSimulation {
 
  private:
   void check_restart_outputs(const Checkpoint& c, const std::filesystem::path& restart_file);
-  void guard();  // after each step: the run guard, and a spatial run's contact count
+  // After each step: the run guard on the step's report, and a spatial run's contact count.
+  void guard(const dynamics::StepReport& report);
 
   const scene::Scene& scene_;
   W world_;

@@ -26,7 +26,7 @@
 //    pre-compressed by eps in {2e-4, 2e-3, 1e-2} (overlaps ~2 mm, 2 cm, 9 cm), E = 1e9 Pa, e = 0.5, mu = 0.3,
 //    no drift: dt = t_c(1 m/s) / n (the automatic step at reference speed 1 m/s) for n from 1 to 40, 4,000 steps.
 //    Unstable: non-finite, or the kinetic energy above max(100 x its value after the first 200 steps, 1 J per floe
-//    at 0.01 m/s). Predicted from the run guard's estimate (World::shortest_active_contact: the pack's stiffest
+//    at 0.01 m/s). Predicted from the run guard's estimate (the step report's shortest contact: the pack's stiffest
 //    contact, its approach rate and stored energy as an impact speed) at the start: dt = t_guard / 2.015.
 // 3. Cost per floe-step by bottom-quadrature rule (the other axis of the speed-accuracy chart): the 1,500-floe
 //    jammed pack with every drift term on (bench_step's DensePack: current 0.2 m/s, wind 10 m/s), 500 steps at
@@ -348,7 +348,7 @@ int main(int argc, char** argv) {
         const double dt = tc / n;
         w.compute_forces(dt);
         if (std::isnan(guard_n)) {
-          const auto res = w.shortest_active_contact();
+          const auto res = w.report().shortest;
           guard_n = tc / res.duration;  // the pack's stiffest contact needs guard_n x the binary steps per contact
           double depth = 0.0;
           for (const auto& c : w.contacts()) depth += c.geometry.depth;

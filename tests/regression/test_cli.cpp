@@ -185,8 +185,10 @@ TEST(Cli, SpatialUnresolvedContactStopsWithExitThree) {
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/cube_plate.yaml";
   const Result r = run_polyfloe("run " + scene + " -o " + out.string() + " --set run.dt=0.005");
   EXPECT_EQ(r.code, 3) << r.output;
-  EXPECT_NE(r.output.find("bodies 0 and 1"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("lower run.dt"), std::string::npos) << r.output;
+  // The same guard and words as a planar run's: the pair, its impact speed and the step to use.
+  EXPECT_NE(r.output.find("the contact between bodies 0 and 1 at t = 0.005 s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Set run.reference_speed to"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("or run.dt to"), std::string::npos) << r.output;
   fs::remove_all(out);
 }
 

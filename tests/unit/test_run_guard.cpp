@@ -1,4 +1,4 @@
-// The run guard (run/simulation.h check_stability), case by case against hand-built states: a non-finite state, a
+// The run guard (run/guard.h check_stability), case by case against hand-built states: a non-finite state, a
 // runaway body, runaway energy spread over many bodies (none fast enough for the per-body limit), an overlap deeper
 // than half the smaller floe's radius (the World tracks the deepest in its contact sum), and the messages
 // naming the body, the time and the step to try.
@@ -8,9 +8,10 @@
 #include <limits>
 #include <string>
 
+#include "dynamics/spatial_world.h"
 #include "dynamics/world.h"
 #include "forcing/drift.h"
-#include "run/simulation.h"
+#include "run/guard.h"
 
 using namespace polyfloe;
 using geometry::Vec2;
@@ -30,7 +31,7 @@ dynamics::World floes(int n, const Vec2& velocity) {
 
 std::string guard_message(const dynamics::World& w, double dt, double v_ref) {
   try {
-    run::check_stability(w, dt, v_ref);
+    run::check_stability(w, w.report(), dt, v_ref);
   } catch (const run::InstabilityError& e) {
     return e.what();
   }
@@ -84,7 +85,7 @@ TEST(RunGuard, OverlapDeeperThanHalfTheSmallerRadiusNamesThePair) {
     w.add_body({.id = static_cast<dynamics::BodyId>(100 + i), .shape = sq, .position = {x[i], 0.0}});
   w.compute_forces(1e-7);
   ASSERT_EQ(w.contact_count(), 2u);
-  EXPECT_NEAR(w.deepest_overlap().ratio, 3.5 / (0.5 * std::sqrt(100.0 / M_PI)), 1e-9);
+  EXPECT_NEAR(w.report().deepest.ratio, 3.5 / (0.5 * std::sqrt(100.0 / M_PI)), 1e-9);
   const std::string m = guard_message(w, 1e-7, 1.0);
   EXPECT_NE(m.find("bodies 102 and 103 overlap by 3.5 m"), std::string::npos) << m;
   // Only the 1 m overlap: quiet.
@@ -99,7 +100,7 @@ TEST(RunGuard, OverlapDeeperThanHalfTheSmallerRadiusNamesThePair) {
 }
 
 TEST(RunGuard, TheStepsMotionSummaryAgreesWithTheBodies) {
-  // The guard clears a step from the summary the final kick gathers (World::motion_summary). Against each body's
+  // The guard clears a step from the summary the final kick gathers (the step report's motion summary). Against each body's
   // own figures: 60 floes, some spinning and some colliding, one kinematic one faster than all (left out), stepped
   // on 1 and on 2 threads: the same bits on both, the largest speed and spin exactly, the energy to round-off.
   auto make = [](int threads) {
@@ -121,7 +122,7 @@ TEST(RunGuard, TheStepsMotionSummaryAgreesWithTheBodies) {
     return w;
   };
   const dynamics::World one = make(1), two = make(2);
-  const dynamics::World::MotionSummary &a = one.motion_summary(), &b = two.motion_summary();
+  const dynamics::MotionSummary &a = one.report().motion, &b = two.report().motion;
   EXPECT_TRUE(a.all_finite);
   EXPECT_EQ(std::memcmp(&a.energy, &b.energy, sizeof a.energy), 0);
   EXPECT_EQ(a.max_speed2, b.max_speed2);
@@ -141,7 +142,48 @@ TEST(RunGuard, TheStepsMotionSummaryAgreesWithTheBodies) {
   // A change from outside is seen: the summary is gathered anew, and the guard names the body.
   dynamics::World w = make(2);
   w.set_velocity(31, {0.0, std::numeric_limits<double>::infinity()}, 0.0);
-  EXPECT_FALSE(w.motion_summary().all_finite);
+  EXPECT_FALSE(w.report().motion.all_finite);
   const std::string m = guard_message(w, 1e-3, 1.0);
   EXPECT_NE(m.find("body 131 has a non-finite state"), std::string::npos) << m;
+}
+
+TEST(RunGuard, ASpatialStepIsCheckedByTheSameGuardAgainstAQuarterOfTheRadius) {
+  // Two 2 m cubes overlapping by 0.6 m (the spatial limit: a quarter of the smaller equivalent radius) and two by
+  // 0.1 m; a spinning third cube apart. The spatial world's report names the deeper pair and its motion summary
+  // agrees with the bodies; the guard reads it as the planar one's.
+  dynamics::SpatialWorld w(dynamics::SpatialSettings{});
+  const auto cube = std::make_shared<const geometry::ConvexPolyhedron>(geometry::ConvexPolyhedron::box({2, 2, 2}));
+  const double x[] = {0.0, 1.4, 10.0, 11.9};
+  for (int i = 0; i < 4; ++i)
+    w.add_body({.id = static_cast<dynamics::BodyId>(100 + i), .shape = cube, .position = {x[i], 0, 0}});
+  w.add_body({.id = 200, .shape = cube, .position = {30, 0, 0}, .angular_velocity = {0.0, 0.0, 2.0}});
+  w.compute_forces(1e-7);
+  ASSERT_EQ(w.contacts().size(), 2u);
+  const dynamics::StepReport& r = w.report();
+  const double limit = dynamics::SpatialWorld::kOverlapLimit * cube->equivalent_radius();
+  EXPECT_EQ(r.deepest.a, 0);
+  EXPECT_EQ(r.deepest.b, 1);
+  EXPECT_NEAR(r.deepest.depth, 0.6, 1e-12);
+  EXPECT_NEAR(r.deepest.ratio, 0.6 / limit, 1e-9);
+  ASSERT_GT(r.deepest.ratio, 1.0);
+  EXPECT_TRUE(r.motion.all_finite);
+  EXPECT_NEAR(r.motion.max_spin_speed, 2.0 * cube->circumradius(), 1e-12);
+  EXPECT_NEAR(r.motion.energy, w.kinetic_energy(), 1e-12 * w.kinetic_energy());
+  std::string m;
+  try {
+    run::check_stability(w, r, 1e-7, 1.0);
+  } catch (const run::InstabilityError& e) {
+    m = e.what();
+  }
+  EXPECT_NE(m.find("bodies 100 and 101 overlap by 0.6 m (more than a quarter of the smaller body's equivalent"),
+            std::string::npos)
+      << m;
+  // The shallow pair alone: quiet, though the spinning cube turns its corners at 3.5 m/s.
+  dynamics::SpatialWorld shallow(dynamics::SpatialSettings{});
+  for (int i = 2; i < 4; ++i)
+    shallow.add_body({.id = static_cast<dynamics::BodyId>(100 + i), .shape = cube, .position = {x[i], 0, 0}});
+  shallow.add_body({.id = 200, .shape = cube, .position = {30, 0, 0}, .angular_velocity = {0.0, 0.0, 2.0}});
+  shallow.compute_forces(1e-7);
+  ASSERT_EQ(shallow.contacts().size(), 1u);
+  EXPECT_NO_THROW(run::check_stability(shallow, shallow.report(), 1e-7, 1.0));
 }

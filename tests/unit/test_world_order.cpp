@@ -217,11 +217,10 @@ TEST_P(WorldOrderByModel, TheThreadCountChangesNothing) {
     for (std::size_t k = 1; k < worlds.size(); ++k) {
       const dynamics::World& w = *worlds[k];
       ASSERT_EQ(w.contact_count(), one.contact_count()) << "threads " << w.threads() << ", step " << step;
-      ASSERT_EQ(w.shortest_active_contact().duration, one.shortest_active_contact().duration)
-          << "threads " << w.threads();
-      ASSERT_EQ(w.shortest_active_contact().a, one.shortest_active_contact().a) << "threads " << w.threads();
-      ASSERT_EQ(w.deepest_overlap().ratio, one.deepest_overlap().ratio) << "threads " << w.threads();
-      ASSERT_EQ(w.deepest_overlap().a, one.deepest_overlap().a) << "threads " << w.threads();
+      ASSERT_EQ(w.report().shortest.duration, one.report().shortest.duration) << "threads " << w.threads();
+      ASSERT_EQ(w.report().shortest.a, one.report().shortest.a) << "threads " << w.threads();
+      ASSERT_EQ(w.report().deepest.ratio, one.report().deepest.ratio) << "threads " << w.threads();
+      ASSERT_EQ(w.report().deepest.a, one.report().deepest.a) << "threads " << w.threads();
       ASSERT_EQ(w.contact_cache().entries(), one.contact_cache().entries()) << "threads " << w.threads();
       ASSERT_EQ(w.profile().reused, one.profile().reused) << "threads " << w.threads() << ", step " << step;
       // The contact records listed for output (from the pairs' evaluations, in pair order) are the same too.
@@ -264,8 +263,8 @@ TEST(WorldOrder, AWorldWithoutBodiesStepsOnSeveralThreads) {
   for (int k = 0; k < 3; ++k) w.step(1e-3);
   EXPECT_EQ(w.contact_count(), 0u);
   EXPECT_EQ(w.narrow_phase_failures(), 0u);
-  EXPECT_EQ(w.deepest_overlap().a, -1);
-  EXPECT_EQ(w.shortest_active_contact().a, -1);
+  EXPECT_EQ(w.report().deepest.a, -1);
+  EXPECT_EQ(w.report().shortest.a, -1);
 }
 
 TEST(WorldOrder, AStateRestoredAfterAStepCutShortFindsItsOwnContacts) {

@@ -94,10 +94,10 @@ GasOutcome corner_rich_gas(contact::ForceModel model) {
   GasOutcome o;
   std::vector<Pair> before, now;
   while (o.collisions < 1000 && o.steps < 40000000) {
-    w.step(dt);
+    const dynamics::StepReport& report = w.step(dt);
     ++o.steps;
     try {  // a contact resolved by too few steps stops `polyfloe run` (its speed guard is left out: see above)
-      run::check_contact_resolution(w, dt);
+      run::check_contact_resolution(w, report, dt);
     } catch (const run::InstabilityError& e) {
       o.stopped = e.what();
       break;
