@@ -16,134 +16,23 @@ SlotView World::slot_view() const {
 }
 
 void World::sum_contacts(int n) {
-  // The contact forces summed per slot in pair order, as one loop over the pairs would, but in parallel: the slots
-  // are cut into consecutive blocks, and the pairs, sorted by their lower slot, into the blocks of that slot. A
-  // slot's contributions from pairs of earlier blocks come before those of its own block's pairs in pair order, so
-  // each block first collects the pairs whose upper slot lies in a later block (pass 1), then sums its slots: the
-  // pairs collected by earlier blocks, block by block, then its own (pass 2). Every slot sees the same additions
-  // in the same order as the serial loop, whatever the blocks: the sums, the stored springs, the counts and the
-  // extremes do not depend on the threads.
-  const int blocks = threads_ == 1 ? 1 : std::min(n, 8 * threads_);
-  sum_blocks_.resize(static_cast<std::size_t>(blocks));  // none without bodies (on several threads)
-  for (int c = 0; c < blocks; ++c) {
-    SumBlock& blk = sum_blocks_[c];
-    blk.first_slot = static_cast<int>(static_cast<long long>(n) * c / blocks);
-    blk.end_slot = static_cast<int>(static_cast<long long>(n) * (c + 1) / blocks);
-    blk.first_pair = static_cast<std::size_t>(
-        std::lower_bound(pairs_.begin(), pairs_.end(), blk.first_slot,
-                         [](const contact::CandidatePair& p, int slot) { return p.a < slot; }) -
-        pairs_.begin());
-  }
-  for (int c = 0; c < blocks; ++c)
-    sum_blocks_[c].end_pair = c + 1 < blocks ? sum_blocks_[c + 1].first_pair : pairs_.size();
-  POLYFLOE_OMP_FOR(threads_)
-  for (int c = 0; c < blocks; ++c) {  // pass 1
-    SumBlock& blk = sum_blocks_[c];
-    blk.spilled.clear();
-    blk.hits = 0;
-    for (std::size_t p = blk.first_pair; p < blk.end_pair; ++p) {
-      if (!pair_hit_[p]) continue;
-      ++blk.hits;
-      if (pairs_[p].b >= blk.end_slot) blk.spilled.push_back(p);
-    }
-  }
-  std::size_t hits = 0;
-  for (SumBlock& blk : sum_blocks_) {
-    blk.first_store = hits;
-    hits += blk.hits;
-  }
-  const std::span<contact::ContactCache::Entry> stores = cache_.store_slots(hits);
-  const std::uint64_t next_gen = cache_.generation() + 1;  // the generation end_step() makes them the previous
-  slot_force_.resize(static_cast<std::size_t>(n));
-  slot_torque_.resize(static_cast<std::size_t>(n));
-  POLYFLOE_OMP_FOR(threads_)
-  for (int c = 0; c < blocks; ++c) sum_block(c, stores, next_gen);  // pass 2
+  const ContactSum::Totals& t =
+      sum_.sum({pairs_, pair_results_, pair_hit_, slot_static_, kOverlapLimit}, threads_, lists_, cache_);
   // Into the bodies' sums, in body order: each thread writes its own stretch of force_ and torque_ (written by
-  // slot from the blocks, neighbouring bodies of different blocks would share cache lines).
+  // slot from the sum's blocks, neighbouring bodies of different blocks would share cache lines).
   POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i) {
     const int k = order_.slot_of(i);
-    force_[i] += slot_force_[k];
-    torque_[i] += slot_torque_[k];
+    force_[i] += sum_.slot_force(k);
+    torque_[i] += sum_.slot_torque(k);
   }
-  merge_sum_blocks(hits);
-}
-
-// Pass 2 of sum_contacts for block c: its slots' sums, its pairs' histories stored, its counts and extremes.
-void World::sum_block(int c, std::span<contact::ContactCache::Entry> stores, std::uint64_t next_gen) {
-  SumBlock& blk = sum_blocks_[c];
-  const int lo = blk.first_slot, hi = blk.end_slot;
-  for (int k = lo; k < hi; ++k) {
-    slot_force_[k] = Vec2{0.0, 0.0};
-    slot_torque_[k] = 0.0;
-  }
-  // A pair's share to one of its slots (a gets minus the force on b).
-  auto add = [&](const PairResult& r, int slot) {
-    if (slot == r.b) {
-      slot_force_[slot] += r.f;
-      slot_torque_[slot] += r.tau_b;
-    } else {
-      slot_force_[slot] -= r.f;
-      slot_torque_[slot] += r.tau_a;
-    }
-  };
-  for (int e = 0; e < c; ++e)
-    for (const std::size_t p : sum_blocks_[e].spilled)
-      if (const int b = pairs_[p].b; b >= lo && b < hi) add(pair_results_[p], b);
-  blk.failures = blk.reused = 0;
-  blk.worst_q2 = blk.worst_v2 = 0.0;
-  blk.worst_a = blk.worst_b = -1;
-  blk.deepest = DeepestOverlap{};
-  std::size_t store = blk.first_store;
-  for (std::size_t p = blk.first_pair; p < blk.end_pair; ++p) {
-    const PairResult& r = pair_results_[p];
-    blk.failures += r.fallback;
-    if (!r.hit) continue;
-    blk.reused += r.reused;
-    const SlotStatic& A = slot_static_[r.a];
-    const SlotStatic& B = slot_static_[r.b];
-    if (r.q2 > blk.worst_q2) {
-      blk.worst_q2 = r.q2;
-      blk.worst_v2 = r.v2;
-      blk.worst_a = A.body;
-      blk.worst_b = B.body;
-    }
-    // Where the next evaluation finds it (NeighbourLists::store).
-    if (const int e = pairs_[p].entry; e >= 0) lists_.set_store(e, static_cast<std::uint32_t>(store), next_gen);
-    stores[store++] = {contact::PairKey{A.id, B.id}, {r.cf.spring, r.cf.normal}};
-    add(r, pairs_[p].a);
-    if (pairs_[p].b < hi) add(r, pairs_[p].b);
-    // The overlap deepest against half the smaller floe's equivalent radius (the run guard's limit).
-    blk.deepest.consider(r.g.depth, kOverlapLimit * std::min(A.equivalent_radius, B.equivalent_radius), A.body, B.body);
-  }
-}
-
-// The counts and extremes of the contact sum, block by block in order (the first of equals wins, as in one loop).
-void World::merge_sum_blocks(std::size_t hits) {
   contacts_.clear();
   contacts_ready_ = false;  // the records are listed from pair_results_ when asked for (contacts())
-  contact_count_ = hits;
-  // The worst contact has the largest q2 = v^2 (k_n/m*)^4: the shortest duration.
-  double worst_q2 = 0.0, worst_v2 = 0.0;
-  int worst_a = -1, worst_b = -1;
-  report_.deepest = DeepestOverlap{};
-  for (const SumBlock& blk : sum_blocks_) {
-    narrow_phase_failures_ += blk.failures;
-    profile_.reused += blk.reused;
-    if (blk.worst_q2 > worst_q2) {
-      worst_q2 = blk.worst_q2;
-      worst_v2 = blk.worst_v2;
-      worst_a = blk.worst_a;
-      worst_b = blk.worst_b;
-    }
-    if (blk.deepest.ratio > report_.deepest.ratio) report_.deepest = blk.deepest;
-  }
-  report_.shortest = ContactResolution{};
-  if (worst_a >= 0 && worst_q2 > 0.0) {
-    // t_c = 3.2181 (m*/k_n)^(2/5) v^(-1/5) = 3.2181 (v^2 (k_n/m*)^4)^(-1/10)
-    report_.shortest = {3.2181 * std::pow(worst_q2, -0.1), std::sqrt(worst_v2), worst_a, worst_b};
-  }
-  cache_.end_step();
+  contact_count_ = t.hits;
+  narrow_phase_failures_ += t.failures;
+  profile_.reused += t.reused;
+  report_.deepest = t.deepest;
+  report_.shortest = t.shortest;
   history_gen_ = cache_.generation();
 }
 

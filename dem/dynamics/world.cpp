@@ -211,7 +211,8 @@ void World::evaluate_forces(double dt, bool shapes) {
   const auto t_pass = clock::now();
   // (a step's profile counts this pass with the shapes; compute_forces from outside, with the drift forces)
   if (shapes) profile_.shapes += std::chrono::duration<double>(t_pass - t0).count();
-  if (!linear) drift_forces(time_ + dt);
+  // The full evaluation of every body's drift load (the steps between take the linear model's, above).
+  if (!linear) drift_forcing_.apply(settings_.drift, drift_bodies(), time_ + dt, threads_, drift_, force_, torque_);
   const auto t1 = clock::now();
   contact_forces(dt);
   profile_.forcing += std::chrono::duration<double>(t1 - (shapes ? t_pass : t0)).count();
@@ -233,6 +234,30 @@ void World::evaluate_forces(double dt, bool shapes) {
   }
   drift_.set_inverses_dt(half_dt > 0.0 ? dt : 0.0);
   forces_ready_ = true;
+}
+
+DriftBodies World::drift_bodies() const {
+  return {.id = id_,
+          .dynamic = is_dynamic_,
+          .position = pos_,
+          .velocity = vel_eval_,
+          .omega = omega_eval_,
+          .rotation = rotation_,
+          .mass = mass_,
+          .thickness = thickness_,
+          .draft = draft_,
+          .side_area = side_area_,
+          .equivalent_radius = equivalent_radius_,
+          .plan_area = plan_area_,
+          .world_xy = world_xy_,
+          .vert_begin = vert_begin_,
+          .vert_off = vert_off_,
+          .quad_off = quad_off_,
+          .quad_lx = quad_lx_,
+          .quad_ly = quad_ly_,
+          .quad_weight = quad_weight_,
+          .max_vertices = max_vertices_,
+          .max_quad_points = max_quad_points_};
 }
 
 double World::kinetic_energy() const {

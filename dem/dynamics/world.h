@@ -21,7 +21,9 @@
 #include "contact/narrow_phase_gjk2d.h"
 #include "contact/narrow_phase_planar.h"
 #include "dynamics/body.h"
+#include "dynamics/contact_sum.h"
 #include "dynamics/drift_model.h"
+#include "dynamics/forcing_stage.h"
 #include "dynamics/neighbour_lists.h"
 #include "dynamics/slots.h"
 #include "dynamics/state_fields.h"
@@ -52,15 +54,6 @@ struct WorldSettings {
   // Skin of the broad phase's neighbour lists [m]; 0 = automatic (0.2 x the mean equivalent radius of the dynamic
   // bodies). A speed knob only: the contacts found, their order and so every result are the same for any value.
   double broad_phase_skin = 0.0;
-};
-
-// What a contact record keeps of the narrow phase's measurement (contact::PlanarContact less the terms only the
-// force evaluation reads).
-struct ContactGeometry {
-  Vec2 normal{1.0, 0.0};  // unit normal from a to b
-  Vec2 point{0.0, 0.0};   // contact point: the overlap's centroid (exact) or the witness midpoint (gjk_epa) [m]
-  double depth = 0.0;     // [m]
-  double area = 0.0;      // overlap area [m^2] (0 from gjk_epa)
 };
 
 // One active contact of the last step (for output and diagnostics).
@@ -259,9 +252,6 @@ class World {
   void sum_contacts(int n);
   // The slots as the neighbour lists read them.
   SlotView slot_view() const;
-  // The full evaluation of every body's drift load (the steps between full evaluations take the linear model in
-  // compute_forces' first loop).
-  void drift_forces(double t);
   void bond_forces(double t);
 
   WorldSettings settings_;
@@ -312,9 +302,7 @@ class World {
   std::vector<SlotState> slot_state_;
   std::vector<std::uint8_t> slot_dynamic_;
   std::vector<geometry::Aabb> boxes_;  // world-frame bounding boxes, by slot
-  std::vector<Vec2> slot_force_;       // contact force and torque of the current evaluation, by slot
-  std::vector<double> slot_torque_;
-  std::vector<double> reach_;  // circumradius about the centroid, by body [m]
+  std::vector<double> reach_;          // circumradius about the centroid, by body [m]
   // Per neighbour-list entry: where the pair's history was stored is kept by the lists; history_gen_ is the
   // contact cache's generation the last contact sum stored under (after a build or a restore of the cache the
   // histories are looked up by key, for one evaluation).
@@ -330,19 +318,6 @@ class World {
   mutable bool motion_ready_ = false;
   mutable std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
   void merge_motion_blocks() const;                   // motion_blocks_ into report_.motion, in block order
-  // One candidate pair's evaluation (the contact stage's parallel part), added up afterwards in pair order.
-  struct PairResult {
-    bool hit = false;
-    bool fallback = false;  // the 2-D GJK-EPA failed on it: measured exactly (beside `hit`: no growth in size)
-    bool reused = false;    // its overlap was built from the kept topology (OverlapTopology::reused)
-    int a = 0, b = 0;       // slots, ordered by id
-    ContactGeometry g;
-    contact::ContactForce cf;
-    Vec2 f{0.0, 0.0};  // on b
-    double tau_b = 0.0, tau_a = 0.0;
-    double v2 = 0.0, q2 = 0.0;
-    double energy = 0.0;  // [J]
-  };
   // What every pair of one contact evaluation shares.
   struct PairStage {
     double dt = 0.0;  // [s]
@@ -369,41 +344,16 @@ class World {
   void evaluate_pair(const PairStage& stage, std::size_t p, PairResult& r);
   std::vector<PairResult> pair_results_;
   std::vector<std::uint8_t> pair_hit_;  // pair_results_[p].hit, packed: what the sum's first pass reads
-  // The parallel sum of pair_results_ (World::sum_contacts): per block of consecutive slots, its pairs (those whose
-  // lower slot is in the block, from first_pair on), the ones of them whose upper slot lies in a later block, and
-  // the block's share of the counts and extremes.
-  struct SumBlock {
-    int first_slot = 0, end_slot = 0;  // its slots: [first_slot, end_slot)
-    std::size_t first_pair = 0, end_pair = 0, first_store = 0, hits = 0;
-    std::vector<std::size_t> spilled;
-    std::uint64_t failures = 0, reused = 0;
-    double worst_q2 = 0.0, worst_v2 = 0.0;
-    int worst_a = -1, worst_b = -1;
-    DeepestOverlap deepest;
-  };
-  std::vector<SumBlock> sum_blocks_;
-  void sum_block(int c, std::span<contact::ContactCache::Entry> stores, std::uint64_t next_gen);
-  void merge_sum_blocks(std::size_t hits);
+  // Their sum in pair order, on any thread count (dynamics/contact_sum.h).
+  ContactSum sum_;
   // Each thread's place in the contact history (ContactCache::previous with a hint), a cache line apart.
   struct alignas(64) CacheHint {
     std::size_t at = 0;
   };
   std::vector<CacheHint> cache_hint_;
-  // Per-thread scratch of the drift stage: sample points and sampled fluid velocities of one body.
-  struct DriftScratch {
-    std::vector<forcing::Vec3> side_points, quad_points;
-    std::vector<Vec2> side_water, quad_fluid;
-    std::vector<double> quad_rx, quad_ry, quad_fx, quad_fy;  // world-frame levers, sampled fluid (x, y)
-    int error_body = -1;     // the lowest body index whose field sample failed this step on this thread
-    std::string error_text;  // and the field's message
-  };
-  std::vector<DriftScratch> drift_scratch_;
-  struct DriftStage;  // forcing_stage.cpp
-  void prepare_drift_scratch();
-  void add_side_drift(std::size_t i, const DriftStage& stage, const forcing::FloeMotion& m, DriftScratch& scratch,
-                      forcing::DriftLoad& load) const;
-  void add_surface_drift(std::size_t i, const DriftStage& stage, const forcing::FloeMotion& m, DriftScratch& scratch,
-                         forcing::DriftLoad& load) const;
+  // The drift forcing stage (dynamics/forcing_stage.h) and what it reads of the bodies.
+  DriftForcing drift_forcing_;
+  DriftBodies drift_bodies() const;
   std::size_t max_quad_points_ = 0, max_vertices_ = 0;
   StepProfile profile_;
   std::uint64_t narrow_phase_failures_ = 0;
