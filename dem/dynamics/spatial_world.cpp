@@ -199,19 +199,9 @@ void SpatialWorld::body_loads() {
 
 SpatialWorldState SpatialWorld::state() const {
   SpatialWorldState s;
-  s.time = time_;
-  s.steps = steps_;
-  s.forces_ready = forces_ready_;
+  copy_members_out(s, [this](auto&& f) { state_members(*this, f); });
   s.ids = id_;
-  s.position = pos_;
-  s.velocity = vel_;
-  s.orientation = q_;
-  s.angular_momentum = ang_mom_;
-  s.force = force_;
-  s.torque = torque_;
   s.contact_history = springs_.entries();
-  s.narrow_phase_queries = stats_.queries;
-  s.narrow_phase_failures = stats_.primary_failures;
   return s;
 }
 
@@ -234,18 +224,8 @@ void SpatialWorld::restore(const SpatialWorldState& s) {
     if (!(key.lo < key.hi) || !index_.count(key.lo) || !index_.count(key.hi) || !spring.allFinite())
       bad("the contact history holds a spring of bodies " + std::to_string(key.lo) + " and " + std::to_string(key.hi) +
           " that is not a finite spring of a pair of this world");
-  time_ = s.time;
-  steps_ = s.steps;
-  forces_ready_ = s.forces_ready;
-  pos_ = s.position;
-  vel_ = s.velocity;
-  q_ = s.orientation;
-  ang_mom_ = s.angular_momentum;
-  force_ = s.force;
-  torque_ = s.torque;
+  copy_members_in(s, [this](auto&& f) { state_members(*this, f); });
   springs_.restore(s.contact_history);
-  stats_.queries = s.narrow_phase_queries;
-  stats_.primary_failures = s.narrow_phase_failures;
   contacts_.clear();
   report_ = StepReport{};
   motion_ready_ = false;

@@ -204,6 +204,21 @@ class SpatialWorld {
   const SpatialSettings& settings() const { return settings_; }
 
  private:
+  // The members SpatialWorldState holds as plain copies, each with its field (state_fields.h copy_members_*).
+  template <class Self, class F>
+  static void state_members(Self& w, F&& f) {
+    f(&SpatialWorldState::time, w.time_);
+    f(&SpatialWorldState::steps, w.steps_);
+    f(&SpatialWorldState::forces_ready, w.forces_ready_);
+    f(&SpatialWorldState::position, w.pos_);
+    f(&SpatialWorldState::velocity, w.vel_);
+    f(&SpatialWorldState::orientation, w.q_);
+    f(&SpatialWorldState::angular_momentum, w.ang_mom_);
+    f(&SpatialWorldState::force, w.force_);
+    f(&SpatialWorldState::torque, w.torque_);
+    f(&SpatialWorldState::narrow_phase_queries, w.stats_.queries);
+    f(&SpatialWorldState::narrow_phase_failures, w.stats_.primary_failures);
+  }
   void kick(double half_dt);
   void drift(double dt);
   void update_world_vertices(int i);

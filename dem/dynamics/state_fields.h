@@ -202,3 +202,15 @@ std::string body_row_problem(const State& state, bool finite) {
 }
 
 }  // namespace polyfloe::dynamics
+
+// A world's members that its state holds as plain copies, bound once: `bind(f)` calls f(&State::field, member) for
+// each of them (each world's state_members), so that state() copies them out and restore() in from one list. The
+// fields that are not plain copies (the contact history, the drift model, the bonds) each world moves itself.
+template <class State, class Bind>
+void copy_members_out(State& s, Bind&& bind) {
+  bind([&s](auto field, const auto& member) { s.*field = member; });
+}
+template <class State, class Bind>
+void copy_members_in(const State& s, Bind&& bind) {
+  bind([&s](auto field, auto& member) { member = s.*field; });
+}

@@ -322,24 +322,13 @@ double World::shortest_contact_duration(double speed) const {
 
 WorldState World::state() const {
   WorldState s;
-  s.time = time_;
-  s.steps = steps_;
-  s.forces_ready = forces_ready_;
+  copy_members_out(s, [this](auto&& f) { state_members(*this, f); });
   s.ids = id_;
-  s.position = pos_;
-  s.velocity = vel_;
-  s.force = force_;
-  s.external_force = ext_force_;
-  s.yaw = yaw_;
-  s.omega = omega_;
-  s.torque = torque_;
-  s.external_torque = ext_torque_;
   s.drift_load = drift_.loads();
   s.lin_force = drift_.linear_force();
   s.lin_torque = drift_.linear_torque();
   s.contact_history = cache_.entries();
   if (bonds_) s.bonds = bonds_->state();
-  s.bonds_failed_last = bonds_failed_last_;
   return s;
 }
 
@@ -366,25 +355,14 @@ void World::restore(const WorldState& s) {
       bad("fixed body " + std::to_string(id_[i]) + " is not where the scene puts it");
   }
   if (bonds_) bonds_->restore(*s.bonds);  // first: it may throw, leaving this World unchanged
-  time_ = s.time;
-  steps_ = s.steps;
-  pos_ = s.position;
-  vel_ = s.velocity;
-  force_ = s.force;
-  ext_force_ = s.external_force;
-  yaw_ = s.yaw;
-  omega_ = s.omega;
-  torque_ = s.torque;
-  ext_torque_ = s.external_torque;
+  copy_members_in(s, [this](auto&& f) { state_members(*this, f); });
   drift_.restore(s.drift_load, s.lin_force, s.lin_torque);
   cache_.restore(s.contact_history);
-  bonds_failed_last_ = s.bonds_failed_last;
   contacts_.clear();
   contacts_ready_ = true;
   contact_count_ = 0;
   report_ = StepReport{};
   update_shapes();
-  forces_ready_ = s.forces_ready;
   lists_.forget_kick_verdict();  // the poses changed since any kick tested them
   motion_ready_ = false;
 }

@@ -231,6 +231,22 @@ class World {
   void compute_forces(double dt);
 
  private:
+  // The members WorldState holds as plain copies, each with its field (dynamics/state_fields.h copy_members_*).
+  template <class Self, class F>
+  static void state_members(Self& w, F&& f) {
+    f(&WorldState::time, w.time_);
+    f(&WorldState::steps, w.steps_);
+    f(&WorldState::forces_ready, w.forces_ready_);
+    f(&WorldState::position, w.pos_);
+    f(&WorldState::yaw, w.yaw_);
+    f(&WorldState::velocity, w.vel_);
+    f(&WorldState::omega, w.omega_);
+    f(&WorldState::force, w.force_);
+    f(&WorldState::torque, w.torque_);
+    f(&WorldState::external_force, w.ext_force_);
+    f(&WorldState::external_torque, w.ext_torque_);
+    f(&WorldState::bonds_failed_last, w.bonds_failed_last_);
+  }
   // compute_forces; with `shapes` (step()) its first pass also moves the world-frame shapes (the slots sorted).
   void evaluate_forces(double dt, bool shapes);
   // The first half kick, then the positions over the whole step and the slot keys there; whether a key changed.

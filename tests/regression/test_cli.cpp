@@ -51,7 +51,7 @@ const std::string kScene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/two_f
 
 }  // namespace
 
-TEST(Cli, HelpAndVersion) {
+TEST(Cli, HelpShowsTheUsageAndVersionNamesTheProgramBothExitingZero) {
   Result r = run_polyfloe("--help");
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.output.find("polyfloe run SCENE"), std::string::npos);
@@ -99,7 +99,7 @@ TEST(Cli, BadSceneNamesLineAndKeyAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-TEST(Cli, RunWritesOutputs) {
+TEST(Cli, ARunWritesFloesContactsResultsAndTheResolvedScene) {
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_run");
   fs::remove_all(out);
   const Result r = run_polyfloe("run " + kScene + " -o " + out.string() + " --set run.duration=1.5");
@@ -403,7 +403,7 @@ TEST(Cli, FieldDrivenFreeDriftRunsAtLargeSteps) {
   fs::remove_all(out);
 }
 
-TEST(Cli, VortexSceneRuns) {
+TEST(Cli, TheDriftVortexSceneRunsAndWritesFloeFrames) {
   const std::string scene = std::string(POLYFLOE_SOURCE_DIR) + "/dem/scenes/drift_vortex.yaml";
   const fs::path out = polyfloe::tsupport::scratch_dir("polyfloe_cli_vortex");
   const Result r =

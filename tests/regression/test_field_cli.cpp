@@ -42,7 +42,7 @@ class FieldCli : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(FieldCli, RefusesBadArguments) {
+TEST_F(FieldCli, BadCommandsArgumentsAndOptionsExitTwoWithTheReasonAndWriteNothing) {
   const std::string out = " -o " + (dir_ / "out.h5").string();
   expect_refused("", "polyfloe field: no command given");
   expect_refused("convert x", "unknown command 'convert' (import, info, compare)");

@@ -22,7 +22,7 @@ BodySpec square(const Vec2& position, double side = 2.0) {
   return b;
 }
 
-TEST(BuildWorld, TwoFloes) {
+TEST(BuildWorld, TwoFloesSceneBuildsItsBodiesAndTheStepIsAFortiethContactUnlessDtIsGiven) {
   const Scene s = read_scene(kSceneDir + "two_floes.yaml", {});
   const dynamics::World w = build_world(s);
   ASSERT_EQ(w.size(), 2u);

@@ -77,7 +77,7 @@ TEST(ContactLaw, EffectiveModulusRadiusMass) {
   EXPECT_DOUBLE_EQ(law.effective_modulus(), 549450549.4505495);
 }
 
-TEST(ContactLaw, StiffnessCoefficients) {
+TEST(ContactLaw, StiffnessIsHertzOfTheEffectiveRadiusAlsoAgainstAWallAndIsSymmetric) {
   const ContactLaw law(settings(0.5, 0.3));
   // R = 3 and 6 m: R* = 2 m; k_n = 4/3 E* sqrt(2) = 1.0360538918e9 N/m^1.5, k_s = k_n / 2.6.
   const contact::PairCoefficients c = law.coefficients(3.0, 6.0, 1.0e4, 3.0e4);

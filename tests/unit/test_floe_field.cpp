@@ -214,7 +214,7 @@ TEST(FloePolygon, MeanCircularityGrowsWithCorners) {
   EXPECT_LT(c15, 1.0);
 }
 
-TEST(PolygonSeparation, Squares) {
+TEST(PolygonSeparation, SquaresApartOverlappingAndTouchingGiveTheSignedGapAndTheDistanceAgrees) {
   const std::vector<Vec2> a{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   const std::vector<Vec2> b{{3, 0}, {4, 0}, {4, 1}, {3, 1}};
   const std::vector<Vec2> c{{0.75, 0.5}, {1.75, 0.5}, {1.75, 1.5}, {0.75, 1.5}};
@@ -332,7 +332,7 @@ TEST(FloeField, PaperField50And60Percent) {  // (speed: tests/bench/bench_floe_f
   }
 }
 
-TEST(FloeField, VoronoiShapes) {
+TEST(FloeField, VoronoiFieldIsValidAveragesSixCornersAndRefusesACornerRangeNoCellGives) {
   // Outlines cut from Poisson-Voronoi tessellations: a valid field (convex, sizes exact, no overlaps, the
   // concentration), the corner range honoured, deterministic for a seed; over the full range the mean corner count
   // is the tessellation's: 6 (Euler's formula for a planar tiling with degree-3 vertices), less the few corners that

@@ -34,7 +34,7 @@ namespace {
 
 Vec2 at(const FieldSpec& s, const Vec3& p, double t) { return forcing::make_field(s)->at(p, t); }
 
-TEST(Fields, UniformAndLinear) {
+TEST(Fields, UniformIsConstantAndLinearAddsTheGradientAndDepthTermsFromTheOrigin) {
   EXPECT_EQ(at(FieldSpec::uniform({0.3, -0.2}), {5, 6, -1}, 7.0), Vec2(0.3, -0.2));
   FieldSpec s;
   s.kind = FieldKind::linear;
@@ -49,7 +49,7 @@ TEST(Fields, UniformAndLinear) {
   EXPECT_FALSE(forcing::make_field(s)->uniform_in_space());
 }
 
-TEST(Fields, Vortices) {
+TEST(Fields, SolidBodyAndRankineVorticesGiveTheirClosedFormsContinuousAtTheCore) {
   FieldSpec s;
   s.kind = FieldKind::solid_body;
   s.origin = {10.0, 20.0};

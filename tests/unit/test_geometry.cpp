@@ -9,7 +9,7 @@ using polyfloe::geometry::ConvexPolygon;
 using polyfloe::geometry::GeometryError;
 using polyfloe::geometry::Vec2;
 
-TEST(Polygon, RectangleHandValues) {
+TEST(Polygon, RectangleAreaPerimeterMomentCentroidRadiusAndCircularityMatchHandValues) {
   // 4 m x 2 m rectangle: A = 8, P = 12, J = A (a^2 + b^2) / 12 = 8 * 20 / 12.
   const std::vector<Vec2> v = {{1, 1}, {5, 1}, {5, 3}, {1, 3}};
   Vec2 offset;
@@ -24,7 +24,7 @@ TEST(Polygon, RectangleHandValues) {
   EXPECT_NEAR(p.circularity(), 2.0 * std::sqrt(std::numbers::pi * 8.0) / 12.0, 1e-12);
 }
 
-TEST(Polygon, TriangleHandValues) {
+TEST(Polygon, RightTriangleAreaPerimeterCentroidAndPolarMomentMatchHandValues) {
   // Right triangle with legs 3 and 4: A = 6, centroid (1, 4/3), P = 12.
   const std::vector<Vec2> v = {{0, 0}, {3, 0}, {0, 4}};
   Vec2 offset;
@@ -62,7 +62,7 @@ TEST(Polygon, FarFromOriginKeepsPrecision) {
   EXPECT_NEAR(p.polar_moment(), 2.0 * 5.0 / 12.0, 1e-6);
 }
 
-TEST(Polygon, RejectsBadInput) {
+TEST(Polygon, FewPointsClockwiseRepeatsCollinearReflexNonFiniteOrStarAreRefusedWithTheReason) {
   auto rejects = [](std::vector<Vec2> v, const char* what) {
     try {
       (void)ConvexPolygon::from_vertices(v);

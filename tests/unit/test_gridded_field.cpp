@@ -104,7 +104,7 @@ TEST(GriddedField, OneLevelIsTheSameAtEveryDepthAndDepthsBeyondTheLevelsClamp) {
   EXPECT_EQ(two.at({5, 5, 0.0}, 0), two.at({5, 5, -1.0}, 0));
 }
 
-TEST(GriddedField, TimeBoundaries) {
+TEST(GriddedField, OutsideTheSnapshotsTimeClampsWrapsOrNamesTheFileAndOneSnapshotIsSteady) {
   const auto ramp = [](const Vec3&, double t) { return Vec2{t, 0.0}; };
   GridData g = make_grid(axis(0, 10, 2), axis(0, 10, 2), {-1.0}, {100.0, 200.0, 400.0}, ramp);
   const Vec3 p{5, 5, -1};

@@ -128,7 +128,7 @@ TEST(IceSheet, AreaSpreadOfPoissonVoronoiCellsAndLloyd) {
               cv0, cv5);
 }
 
-TEST(IceSheet, BodiesAndErrors) {
+TEST(IceSheet, BodiesGetConsecutiveIdsTheSpecsValuesAndCellCentroidsAndTinyCellsAreRefused) {
   IceSheetSpec s;
   s.region_max = {50.0, 50.0};
   s.cell_size = 10.0;

@@ -32,7 +32,7 @@ constexpr EdgeSimd kVariants[] = {EdgeSimd::sse2, EdgeSimd::avx2, EdgeSimd::best
 
 }  // namespace
 
-TEST(InsideAllEdges, ClosedFormSquare) {
+TEST(InsideAllEdges, SquareMarginsAreTheDistanceToTheNearestEdgeAndPointsOutsideOrNanFail) {
   const std::vector<Vec2> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   const Vec2 origin{0.0, 0.0};
   for (const EdgeSimd s : kVariants) {

@@ -172,7 +172,7 @@ TEST(NarrowPhase, TouchingIsNoContact) {
   EXPECT_FALSE(contact::planar_overlap(sq, shifted(sq, {10 + 1e-12, 0}), c));
 }
 
-TEST(NarrowPhase, ParallelEdges) {
+TEST(NarrowPhase, OverlapsAlongSharedEdgeLinesGiveExactAreaDepthAndTheAreaGradientsNormal) {
   const std::vector<Vec2> sq = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
   PlanarContact c;
   // Same heights, edges on shared lines: the overlap is a 0.1 m x 10 m strip, normal along x.
@@ -206,7 +206,7 @@ TEST(NarrowPhase, ParallelEdges) {
   EXPECT_NEAR(c.depth, 0.001, 1e-9);
 }
 
-TEST(NarrowPhase, VertexVertex) {
+TEST(NarrowPhase, TipToTipDiamondsGiveASquareOverlapWithHalfThePenetrationAsDepth) {
   // Two squares rotated 45 degrees meeting tip to tip with a small overlap: a square overlap of diagonal 2*pen.
   const double h = 5.0 * std::sqrt(2.0);
   const std::vector<Vec2> d = {{0, -h}, {h, 0}, {0, h}, {-h, 0}};

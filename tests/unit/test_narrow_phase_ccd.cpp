@@ -142,7 +142,7 @@ Mat3 random_rotation(std::mt19937_64& rng) {
 
 }  // namespace
 
-TEST(NarrowPhaseCcd, MethodNames) {
+TEST(NarrowPhaseCcd, ToStringGivesEachMethodsSnakeCaseName) {
   EXPECT_STREQ(contact::to_string(CcdMethod::gjk_epa), "gjk_epa");
   EXPECT_STREQ(contact::to_string(CcdMethod::gjk_epa_tiebreak), "gjk_epa_tiebreak");
   EXPECT_STREQ(contact::to_string(CcdMethod::mpr), "mpr");
@@ -189,7 +189,7 @@ TEST(NarrowPhaseCcd, AlignedCubesCoplanarFaces) {
 
 // 20 random rotations of the offset pair, placed up to 1 km from the world origin: depth 0.1 ± 1e-6, normal
 // R * (±e_k) ± 1e-6.
-TEST(NarrowPhaseCcd, RotatedCubes) {
+TEST(NarrowPhaseCcd, RandomlyRotatedAndMovedCubesGiveTheRotatedAxisNormalAndDepth) {
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> u(-1000.0, 1000.0);
   const auto a0 = box(Vec3::Zero(), Vec3::Ones());
@@ -220,7 +220,7 @@ TEST(NarrowPhaseCcd, BoxRestingIntoLargerBox) {
   }
 }
 
-TEST(NarrowPhaseCcd, SeparatedPairs) {
+TEST(NarrowPhaseCcd, CubesWithAGapAlongAnAxisADiagonalOrFarAboveAreSeparated) {
   const auto a = box(Vec3::Zero(), Vec3::Ones());
   for (const CcdMethod m : kMethods) {
     EXPECT_EQ(ccd_penetration(a, moved(a, Mat3::Identity(), Vec3(1.1, 0.3, 0.2)), m).status, CcdStatus::separated);
@@ -311,7 +311,7 @@ TEST(NarrowPhaseCcd, SupportCallBoundEndsTheQuery) {
 // the tolerance is 1e-6 x the pair's size, <= 7e-5 m here). No method may give a wrong answer (missed + wrong
 // normal + wrong depth): plain libccd's false touching exits on these ties must come out as failures (the caller
 // then asks the exact method), and tie-breaking must fail no more often than plain libccd.
-TEST(NarrowPhaseCcd, LevelFloes) {
+TEST(NarrowPhaseCcd, LevelFloesNeverGetAWrongAnswerAndTieBreakingFailsNoMoreThanPlainLibccd) {
   constexpr int kPairs = 5000;
   std::mt19937_64 rng(31);
   std::vector<LevelPair> pairs;

@@ -115,7 +115,7 @@ Poly shifted(const Poly& v, const Vec2& d) { return transformed(v, 0.0, d); }
 
 // Two axis-aligned squares (side 2 m) overlapping by 0.25 m along one axis (1.9 m or 2 m along the other): depth
 // and normal exact. With the centres on an axis GJK's first segment runs through the origin (the degenerate start).
-TEST(Gjk2d, AxisAlignedSquares) {
+TEST(Gjk2d, SquaresOverlappingAQuarterMetreGiveThatDepthTheAxisNormalAndTheMidpoint) {
   const Poly a = box({0, 0}, 1, 1);
   struct Case {
     Vec2 centre, normal;
@@ -142,7 +142,7 @@ TEST(Gjk2d, AxisAlignedSquares) {
 }
 
 // A rigid motion of the pair moves the answer with it: same depth, rotated normal, moved point.
-TEST(Gjk2d, RotationTranslationInvariance) {
+TEST(Gjk2d, ARigidMotionOfThePairMovesTheDepthNormalAndPointWithIt) {
   const Poly a0 = regular(5, 3.0, {0, 0}, 0.3);
   const Poly b0 = transformed(regular(7, 2.0, {0, 0}, 0.0), 0.7, {4.1, 1.2});
   const Gjk2dContact r0 = gjk_epa_2d(a0, b0);
@@ -218,7 +218,7 @@ TEST(Gjk2d, TwelveGonsAgainstPlanar) {
   }
 }
 
-TEST(Gjk2d, SeparatedAndTouching) {
+TEST(Gjk2d, GapsAndExactTouchingAreSeparatedEvenWhenTheBoundingBoxesOverlap) {
   const Poly a = box({0, 0}, 1, 1);
   EXPECT_EQ(gjk_epa_2d(a, box({2.5, 0.3}, 1, 1)).status, Gjk2dStatus::separated);         // 0.5 m gap
   EXPECT_EQ(gjk_epa_2d(a, box({100, -40}, 1, 1)).status, Gjk2dStatus::separated);         // far
@@ -245,7 +245,7 @@ TEST(Gjk2d, SeparatedAndTouching) {
 
 // One polygon wholly inside the other: the depth is the least translation that takes it out, the separating-axis
 // penetration, which is also what the planar method reports in its containment fallback.
-TEST(Gjk2d, DeepContainment) {
+TEST(Gjk2d, ContainedPolygonDepthIsTheShortestWayOutAsSeparatingAxesAndPlanarGiveIt) {
   const Poly big = box({0, 0}, 50, 50);
   const Poly small = transformed(regular(5, 1.0, {0, 0}, 0.2), 0.0, {30.0, -10.0});
   for (int swap = 0; swap < 2; ++swap) {
@@ -271,7 +271,7 @@ TEST(Gjk2d, DeepContainment) {
 }
 
 // The same pairs 10 km from the origin: depth and normal as near the origin, to round-off of 1e4 m coordinates.
-TEST(Gjk2d, FarFromOrigin) {
+TEST(Gjk2d, PairsTenKilometresOutGiveTheDepthAndNormalTheyHaveNearTheOrigin) {
   const Vec2 far(1.0e4, -1.0e4);
   const Poly a0 = regular(12, 10.0, {0, 0}, 0.1), b0 = transformed(regular(9, 6.0, {0, 0}, 0.0), 0.5, {15.0, 3.0});
   const Gjk2dContact r0 = gjk_epa_2d(a0, b0);

@@ -24,7 +24,7 @@ std::string read_and_close(std::FILE* f) {
 
 }  // namespace
 
-TEST(Progress, Formatting) {
+TEST(Progress, LinesAreExactDurationsUseTwoUnitsAndUnknownRatesAndEtasPrintAsQuestionMarks) {
   EXPECT_EQ(io::format_progress_line(30.0, 300.0, 1234.0, 272.0), "t = 30 / 300 s (10.0 %)  1234 steps/s  ETA 4m32s");
   EXPECT_EQ(io::format_progress_line(0.0, 300.0, -1.0, -1.0), "t = 0 / 300 s (0.0 %)  ? steps/s  ETA ?");
   EXPECT_EQ(io::format_progress_report(30.0, 300.0, 1234.4), "t = 30 / 300 s, 1234 steps/s");

@@ -52,7 +52,7 @@ TEST(RunGuard, NonFiniteStateNamesTheBodyTimeAndStep) {
   EXPECT_NE(m.find("set run.dt to 0.00025"), std::string::npos) << m;
 }
 
-TEST(RunGuard, RunawayBody) {
+TEST(RunGuard, BodyFasterThanTheSpeedLimitNamesTheBodyAndItsSpeed) {
   dynamics::World w = floes(3, {1.0, 0.0});
   w.set_velocity(2, {60.0, 0.0}, 0.0);  // limit max(50, 20 x 1 m/s)
   const std::string m = guard_message(w, 1e-3, 1.0);

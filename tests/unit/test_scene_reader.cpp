@@ -44,7 +44,7 @@ TEST(SceneReader, DefaultsFillEverythingNotGiven) {
   expect_same_settings(s, expected);
 }
 
-TEST(SceneReader, ChannelSceneParses) {
+TEST(SceneReader, ChannelSceneGivesEveryValueInTheFileAndWhereTheFloeFieldWasGiven) {
   const Scene s = read_scene(kSceneDir + "channel.yaml", {});
   EXPECT_EQ(s.name, "channel");
   EXPECT_EQ(s.time.duration, 300.0);
@@ -147,7 +147,7 @@ TEST(SceneReader, SpatialKeysReadBack) {
   EXPECT_NEAR(w.mass(0), 900.0 * 6.0 * 1.5, 1e-9);
 }
 
-TEST(SceneReader, ExplicitBodyKeys) {
+TEST(SceneReader, EveryFloeKeyReadsBackWithYawDegInRadiansAndTheFloesFileLine) {
   const Scene s = parse_scene(
       "floes:\n"
       "  - rectangle: {width: 20, height: 2}\n"
@@ -215,7 +215,7 @@ TEST(SceneReader, APolygonInWorldCoordinatesStaysWhereItIs) {
             std::string::npos);
 }
 
-TEST(SceneReader, AutoAndNumbers) {
+TEST(SceneReader, AutoLeavesDtUnsetAndBroadPhaseZeroAndNumbersWithAPlusSignReadAsGiven) {
   const Scene s = parse_scene(std::string(kOneFloe) +
                                   "run: {dt: 1.0e-4, reference_speed: +2.5, steps_per_contact: 50}\n"
                                   "contact: {broad_phase_cell: 30, broad_phase_skin: 0.5, damping_model: paper}\n",
@@ -284,7 +284,7 @@ TEST(SceneErrors, UnclosedQuoteAndBinaryBytes) {
   EXPECT_TRUE(contains(m, "t.yaml:1:7: key 'name': expected a name usable as a folder name")) << m;
 }
 
-TEST(SceneErrors, WrongType) {
+TEST(SceneErrors, WrongTypeNamesTheLineKeyExpectedTypeAndWhatWasGiven) {
   std::string m = parse_error(std::string(kOneFloe) + "run:\n  duration: long\n");
   EXPECT_EQ(m, "t.yaml:4:13: key 'run.duration': expected a number [s], got 'long'");
   m = parse_error(std::string(kOneFloe) + "run:\n  duration: '300'\n");
@@ -357,7 +357,7 @@ TEST(SceneErrors, MissingRequiredAndExclusiveKeys) {
   EXPECT_TRUE(contains(m, "give only one of 'yaw' [rad] and 'yaw_deg' [deg]")) << m;
 }
 
-TEST(SceneErrors, BadPolygons) {
+TEST(SceneErrors, ClockwiseNonConvexOrTwoPointPolygonsAreRefusedWithTheReason) {
   std::string m = parse_error("floes:\n  - polygon: [[0, 0], [0, 1], [1, 0]]\n");  // clockwise
   EXPECT_TRUE(starts_with(m, "t.yaml:2:14: key 'floes.0.polygon': vertices are clockwise")) << m;
   m = parse_error("floes:\n  - polygon: [[0, 0], [2, 0], [1, 0.1], [2, 2], [0, 2]]\n");
@@ -373,7 +373,7 @@ TEST(SceneErrors, DuplicateKeysAndIds) {
   EXPECT_TRUE(starts_with(m, "t.yaml:3:42: key 'floes.1.id': id 4 is already used by floes.0 (t.yaml:2:5)")) << m;
 }
 
-TEST(SceneErrors, NoDynamicBody) {
+TEST(SceneErrors, EmptyOrAllFixedSceneHasNoDynamicBodyAndANonMapSceneIsRefused) {
   EXPECT_TRUE(contains(parse_error(""), "the scene has no dynamic body"));
   EXPECT_TRUE(contains(parse_error("floes:\n  - {regular: {sides: 3, radius: 1}, motion: fixed}\n"),
                        "the scene has no dynamic body"));
@@ -463,7 +463,7 @@ TEST(SceneOverrides, ErrorsSayWhichSet) {
   EXPECT_TRUE(starts_with(m, "t.yaml:3:17: key 'run.duration'")) << m;
 }
 
-TEST(SceneErrors, ForcingBlock) {
+TEST(SceneErrors, EachBadForcingOrDensityKeyIsRefusedNamingTheKeyAndWhatItNeeds) {
   const std::string one(kOneFloe);
   std::string m = parse_error(one + "forcing:\n  ocean: {current: [1, 0], field: {type: uniform}}\n");
   EXPECT_TRUE(contains(m, "key 'forcing.ocean': give only one of 'current' (uniform) and 'field'")) << m;

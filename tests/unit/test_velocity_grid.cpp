@@ -168,7 +168,7 @@ TEST(VelocityGrid, AveragesOverSamplesAndCountsIceFraction) {
   EXPECT_EQ(empty.ice_fraction[2], 0.0f);
 }
 
-TEST(VelocityGrid, RejectsBadGeometry) {
+TEST(VelocityGrid, ZeroCellSizeNoColumnsOrANanOriginThrowsInvalidArgument) {
   EXPECT_THROW(run::VelocityGrid({.cell = 0.0, .nx = 1, .ny = 1}), std::invalid_argument);
   EXPECT_THROW(run::VelocityGrid({.cell = 1.0, .nx = 0, .ny = 1}), std::invalid_argument);
   EXPECT_THROW(run::VelocityGrid({.x0 = NAN, .cell = 1.0, .nx = 1, .ny = 1}), std::invalid_argument);

@@ -70,7 +70,7 @@ TEST(World, AddBodyRejectsBadBodies) {
   EXPECT_EQ(w.add_body({.id = 10, .shape = most, .position = {100.0, 0.0}}), 1);
 }
 
-TEST(World, IdIndexMapping) {
+TEST(World, AddBodyReturnsConsecutiveIndicesIdsMapBothWaysAndUnknownIdsGiveMinusOne) {
   dynamics::World w(no_drift());
   const auto sq = rect(4, 4);
   const dynamics::BodyId ids[] = {1000, 7, 42, 0, 123456789012345ull};
@@ -113,7 +113,7 @@ TEST(World, MassPropertiesAndDiagnostics) {
   EXPECT_NEAR(w.max_speed(), std::sqrt(0.3125), 1e-15);
 }
 
-TEST(World, ShortestContactDuration) {
+TEST(World, ShortestContactIsHertzForTwoOfTheSmallestFloesAndInfiniteWithOnlyWalls) {
   dynamics::World w(no_drift());
   EXPECT_TRUE(std::isinf(w.shortest_contact_duration(1.0)));  // no floes
   w.add_body({.id = 1, .shape = rect(200, 10), .motion = dynamics::Motion::fixed});

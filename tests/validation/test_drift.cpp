@@ -142,7 +142,7 @@ TEST(Drift, FreeDriftWithCoriolis) {
   }
 }
 
-TEST(Drift, InertialOscillation) {
+TEST(Drift, InertialCircleHasPeriodTwoPiOverFRadiusUOverFAndKeepsTheSpeed) {
   dynamics::WorldSettings ws;
   ws.drift = forcing::DriftSettings::none();
   ws.drift.coriolis = true;
@@ -382,7 +382,7 @@ Load term_load(int term, double s) {
   return {w.forces()[0], w.torques()[0]};
 }
 
-TEST(Drift, ScalingWithLength) {
+TEST(Drift, DoublingTheFloeScalesEveryDriftForceByFourAndEveryTorqueByEight) {
   const char* names[] = {"form drag", "moment drag", "skin drag", "air drag", "Coriolis"};
   for (int term = 0; term < 5; ++term) {
     const Load a = term_load(term, 1.0), b = term_load(term, 2.0);
