@@ -1,9 +1,9 @@
-// The blocks of a scene that make bodies: explicit floes (polygon, regular, rectangle; world or body coordinates),
-// the floe field, the channel, the ice sheet and the spatial bodies. Each reads its block on the schema walker of
-// schema.h and checks what one block can check; scene_reader.cpp checks across blocks.
-#include "scene/body_reader.h"
-
+// The keys of settings_schema.h that read themselves and make bodies or rectangles: the explicit floes (polygon,
+// regular, rectangle; world or body coordinates), the spatial bodies, the floe field's corners, the regions.
 #include <algorithm>
+#include <array>
+#include <map>
+#include <optional>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -11,10 +11,12 @@
 
 #include "contact/narrow_phase_planar.h"
 #include "geometry/polygon.h"
-#include "scene/channel.h"
+#include "scene/settings_schema.h"
 #include "scene/yaml_format.h"
 
 namespace polyfloe::scene::detail {
+
+namespace {
 
 // A rectangle [xmin, ymin, xmax, ymax] [m] with xmax > xmin and ymax > ymin.
 std::array<double, 4> to_box(const Context& ctx, const Field& f) {
@@ -27,8 +29,6 @@ std::array<double, 4> to_box(const Context& ctx, const Field& f) {
   if (!(r[3] > r[1])) ctx.fail(items[3], "ymax = " + fmt(r[3]) + " must be > ymin = " + fmt(r[1]) + " [m]");
   return r;
 }
-
-namespace {
 
 // One explicit body: exactly one of polygon / regular / rectangle.
 BodySpec read_body(MapReader m) {
@@ -115,45 +115,43 @@ BodySpec read_body(MapReader m) {
 
 }  // namespace
 
-void read_floes(const Context& ctx, const Field& f, std::vector<BodySpec>& bodies) {
-  if (!f.value.IsDefined() || f.value.IsNull()) return;
+void read_floes(MapReader& m, const char* key, std::vector<BodySpec>& bodies) {
+  const Context& ctx = m.context();
+  const auto f = m.take(key);
+  if (!f || f->value.IsNull()) return;
   std::map<std::uint64_t, std::size_t> first_with_id;  // id -> the floe that gave it first
-  for (const Field& item : list_items(ctx, f, "a list of floes (each a block of keys)")) {
+  for (const Field& item : list_items(ctx, *f, "a list of floes (each a block of keys)")) {
     bodies.push_back(read_body(MapReader(ctx, item)));
     if (const auto id = bodies.back().id) {
       const auto [it, fresh] = first_with_id.emplace(*id, bodies.size() - 1);
       if (!fresh)
         ctx.fail({static_cast<const YAML::Node&>(item.value)["id"], YAML::Node(), join(item.path, "id")},
-                 "id " + std::to_string(*id) + " is already used by " + f.path + "." + std::to_string(it->second) +
+                 "id " + std::to_string(*id) + " is already used by " + f->path + "." + std::to_string(it->second) +
                      " (" + bodies[it->second].source.where + ")");
     }
   }
 }
 
-FloeFieldSpec read_floe_field(MapReader m) {
+void read_box(MapReader& m, const char* key, Box& box) {
+  if (auto f = m.take(key)) {
+    const std::array<double, 4> r = to_box(m.context(), *f);
+    box.min = {r[0], r[1]};
+    box.max = {r[2], r[3]};
+  }
+}
+
+void read_region(MapReader& m, const char* key, std::optional<std::array<double, 4>>& region) {
+  if (auto f = m.take(key)) {
+    if (is_word(f->value, "auto"))
+      region.reset();
+    else
+      region = to_box(m.context(), *f);
+  }
+}
+
+void read_corners(MapReader& m, const char* key, FloeFieldSpec& s) {
   const Context& ctx = m.context();
-  FloeFieldSpec s;
-  s.source.where = ctx.where(m.self());
-  if (auto f = m.take("region")) {
-    const std::array<double, 4> r = to_box(ctx, *f);
-    s.region_min = {r[0], r[1]};
-    s.region_max = {r[2], r[3]};
-  }
-  m.number("concentration", s.concentration, Range{0.0, 0.7, true, false, "-"});
-  {
-    MapReader size = m.block("size");
-    // From a centimetre to 100 km: beyond, areas under- or overflow and no contact resolves.
-    size.number("min", s.size_min, closed(FloeFieldSpec::kMinSize, FloeFieldSpec::kMaxSize, "m"));
-    size.number("max", s.size_max, closed(FloeFieldSpec::kMinSize, FloeFieldSpec::kMaxSize, "m"));
-    size.number("exponent", s.exponent, closed(0.0, 10.0, "-"));
-    if (s.size_max < s.size_min) {
-      const auto f = size.take("max");
-      ctx.fail(f ? *f : *size.take("min"),
-               "size.max = " + fmt(s.size_max) + " m must be >= size.min = " + fmt(s.size_min) + " m");
-    }
-    size.finish();
-  }
-  if (auto f = m.take("corners")) {
+  if (auto f = m.take(key)) {
     const int hi = contact::kMaxPolygonVertices;
     if (f->value.IsSequence()) {
       const std::vector<Field> items = list_items(ctx, *f, "[min, max]");
@@ -167,74 +165,7 @@ FloeFieldSpec read_floe_field(MapReader m) {
       s.corners_min = s.corners_max = static_cast<int>(to_integer(ctx, *f, 3, hi));
     }
   }
-  m.choice("shape", s.shape, {{"ellipse", FloeShape::ellipse}, {"voronoi", FloeShape::voronoi}});
-  m.number("aspect_max", s.aspect_max, closed(1.0, 10.0, "-"));
-  m.number("thickness", s.thickness, positive("m"));
-  m.vec2("velocity", s.velocity, "m/s");
-  m.unsigned64("seed", s.seed);
-  m.integer("max_attempts", s.max_attempts, 1, 1000000000);
-  m.finish();
-  return s;
 }
-
-ChannelSpec read_channel(MapReader m) {
-  const Context& ctx = m.context();
-  ChannelSpec c;
-  c.source.where = ctx.where(m.self());
-  m.number("basin_x_min", c.basin_x_min, any("m"));
-  m.number("basin_x_max", c.basin_x_max, any("m"));
-  m.number("basin_y_min", c.basin_y_min, any("m"));
-  m.number("basin_y_max", c.basin_y_max, any("m"));
-  m.number("funnel_length", c.funnel_length, positive("m"));
-  m.number("opening", c.opening, positive("m"));
-  m.number("strait_length", c.strait_length, positive("m"));
-  m.number("wall_thickness", c.wall_thickness, positive("m"));
-  m.number("jam_window", c.jam_window, positive("s"));
-  m.number("jam_speed", c.jam_speed, positive("m/s"));
-  m.finish();
-  if (const std::optional<SpecIssue> issue = channel_issue(c)) {
-    const auto f = m.take(issue->key.c_str());
-    ctx.fail(f ? *f : Field{m.self().value, m.self().key, join(m.self().path, issue->key)}, issue->message);
-  }
-  return c;
-}
-
-IceSheetSpec read_ice_sheet(MapReader m) {
-  const Context& ctx = m.context();
-  IceSheetSpec s;
-  s.source.where = ctx.where(m.self());
-  if (auto f = m.take("region")) {
-    const std::array<double, 4> r = to_box(ctx, *f);
-    s.region_min = {r[0], r[1]};
-    s.region_max = {r[2], r[3]};
-  }
-  m.number("cell_size", s.cell_size, positive("m"));
-  m.integer("relaxation", s.relaxation, 0, 1000);
-  m.number("thickness", s.thickness, positive("m"));
-  m.vec2("velocity", s.velocity, "m/s");
-  m.unsigned64("seed", s.seed);
-  m.choice("elements", s.elements, {{"cells", SheetElements::cells}, {"triangles", SheetElements::triangles}});
-  if (auto b = m.optional_block("bonds")) {
-    SheetBondSpec bond;
-    b->number("tensile_strength", bond.tensile_strength, positive("Pa"));
-    b->number("shear_strength", bond.shear_strength, positive("Pa"));
-    b->number("friction_angle", bond.friction_angle, Range{0.0, 0.5 * std::numbers::pi, false, true, "rad"});
-    b->integer("points_per_face", bond.points_per_face, 2, 64);
-    b->number("damping_ratio", bond.damping_ratio, closed(0.0, 10.0, "-"));
-    b->finish();
-    s.bonds = bond;
-  }
-  const double cells = (s.region_max - s.region_min).prod() / (0.25 * std::numbers::pi * s.cell_size * s.cell_size);
-  if (cells > IceSheetSpec::kMaxCells) {
-    const auto f = m.take("cell_size");
-    ctx.fail(f ? *f : m.self(), "the region holds " + fmt(std::round(cells)) + " cells of this size (at most " +
-                                    fmt(IceSheetSpec::kMaxCells) + "): raise ice_sheet.cell_size or shrink its region");
-  }
-  m.finish();
-  return s;
-}
-
-namespace {
 
 geometry::Vec3 to_vec3(const Context& ctx, const Field& f, const Range& r) {
   const std::string what = "a list of 3 numbers [x, y, z] [" + std::string(r.unit) + "]";
@@ -242,6 +173,8 @@ geometry::Vec3 to_vec3(const Context& ctx, const Field& f, const Range& r) {
   if (items.size() != 3) ctx.fail(f, "expected " + what + ", got " + describe(f.value));
   return {to_number(ctx, items[0], r), to_number(ctx, items[1], r), to_number(ctx, items[2], r)};
 }
+
+namespace {
 
 // One spatial body: exactly one of box / polygon (+ thickness).
 SpatialBodySpec read_spatial_body(MapReader m) {
@@ -291,42 +224,19 @@ SpatialBodySpec read_spatial_body(MapReader m) {
 
 }  // namespace
 
-SpatialSpec read_spatial(MapReader m) {
+void read_spatial_bodies(MapReader& m, const char* key, std::vector<SpatialBodySpec>& bodies) {
   const Context& ctx = m.context();
-  SpatialSpec s;
-  s.source.where = ctx.where(m.self());
-  if (auto f = m.take("gravity")) s.gravity = to_vec3(ctx, *f, any("m/s^2"));
-  if (m.boolean("buoyancy", s.buoyancy) && s.buoyancy && !(s.gravity.norm() > 0.0))
-    ctx.fail(*m.take("buoyancy"),
-             "buoyancy needs gravity (Archimedes' force is the weight of the displaced water): "
-             "give spatial.gravity, for example [0, 0, -9.81]");
-  m.number("water_level", s.water_level, any("m"));
-  m.number("water_density", s.water_density, closed(1.0, 1e5, "kg/m^3"));
-  m.choice("narrow_phase", s.narrow_phase,
-           {{"sat", dynamics::SpatialNarrowPhase::sat},
-            {"gjk_epa_tiebreak", dynamics::SpatialNarrowPhase::gjk_epa_tiebreak},
-            {"gjk_epa", dynamics::SpatialNarrowPhase::gjk_epa},
-            {"mpr", dynamics::SpatialNarrowPhase::mpr}});
-  m.choice("contact_point", s.contact_point,
-           {{"witness", dynamics::ContactPointModel::witness}, {"manifold", dynamics::ContactPointModel::manifold}});
-  if (auto f = m.take("bodies")) {
-    if (!f->value.IsNull()) {
-      for (const Field& item : list_items(ctx, *f, "a list of bodies (each a block of keys)")) {
-        s.bodies.push_back(read_spatial_body(MapReader(ctx, item)));
-        for (std::size_t j = 0; j + 1 < s.bodies.size(); ++j) {
-          if (s.bodies.back().id && s.bodies[j].id == s.bodies.back().id)
-            ctx.fail({static_cast<const YAML::Node&>(item.value)["id"], YAML::Node(), join(item.path, "id")},
-                     "id " + std::to_string(*s.bodies.back().id) + " is already used by " + f->path + "." +
-                         std::to_string(j) + " (" + s.bodies[j].source.where + ")");
-        }
-      }
+  const auto f = m.take(key);
+  if (!f || f->value.IsNull()) return;
+  for (const Field& item : list_items(ctx, *f, "a list of bodies (each a block of keys)")) {
+    bodies.push_back(read_spatial_body(MapReader(ctx, item)));
+    for (std::size_t j = 0; j + 1 < bodies.size(); ++j) {
+      if (bodies.back().id && bodies[j].id == bodies.back().id)
+        ctx.fail({static_cast<const YAML::Node&>(item.value)["id"], YAML::Node(), join(item.path, "id")},
+                 "id " + std::to_string(*bodies.back().id) + " is already used by " + f->path + "." +
+                     std::to_string(j) + " (" + bodies[j].source.where + ")");
     }
   }
-  m.finish();
-  if (std::none_of(s.bodies.begin(), s.bodies.end(),
-                   [](const SpatialBodySpec& b) { return b.motion == dynamics::Motion::dynamic; }))
-    ctx.fail(m.self(), "a spatial scene needs at least one body with motion: dynamic under 'spatial.bodies'");
-  return s;
 }
 
 }  // namespace polyfloe::scene::detail

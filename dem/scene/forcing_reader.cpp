@@ -1,4 +1,5 @@
 #include "scene/forcing_reader.h"
+#include "scene/settings_schema.h"
 
 #include <filesystem>
 
@@ -9,12 +10,6 @@
 namespace polyfloe::scene::detail {
 
 namespace {
-
-void read_term(MapReader m, bool& enabled, double& coefficient, const Range& range) {
-  m.boolean("enabled", enabled);
-  m.number("coefficient", coefficient, range);
-  m.finish();
-}
 
 Eigen::Matrix2d to_matrix2(const Context& ctx, const Field& f, const char* unit) {
   const std::string what = "a list of 2 rows [[du/dx, du/dy], [dv/dx, dv/dy]] [" + std::string(unit) + "]";
@@ -145,56 +140,14 @@ forcing::FieldSpec read_field(MapReader m) {
   return s;
 }
 
-// 'current' / 'wind' (a uniform velocity) or 'field' (any kind), not both.
-void read_velocity(MapReader& m, const char* shorthand, forcing::FieldSpec& spec) {
-  if (m.has(shorthand) && m.has("field"))
-    m.context().fail(m.self(), std::string("give only one of '") + shorthand + "' (uniform) and 'field'");
-  Vec2 v = spec.velocity;
-  if (m.vec2(shorthand, v, "m/s")) spec = forcing::FieldSpec::uniform(v);
-  if (auto f = m.optional_block("field")) spec = read_field(*f);
-}
-
 }  // namespace
 
-void read_forcing(MapReader m, Scene& s) {
-  forcing::DriftSettings& d = s.world.drift;
-  m.choice("treatment", d.treatment,
-           {{"semi_implicit", forcing::DriftTreatment::semi_implicit},
-            {"explicit", forcing::DriftTreatment::explicit_step}});
-  if (const auto f = m.take("update_every")) {
-    d.update_every = static_cast<int>(to_integer(m.context(), *f, 1, 1000));
-    if (d.update_every > 1 && d.treatment != forcing::DriftTreatment::semi_implicit)
-      m.context().fail(*f, "update_every = " + std::to_string(d.update_every) +
-                               " needs forcing.treatment: semi_implicit (the steps between full evaluations use its "
-                               "linear model); use 1 with treatment: explicit");
-  }
-  m.choice("quadrature", d.quadrature,
-           {{"centroid", forcing::Quadrature::centroid},
-            {"degree1", forcing::Quadrature::degree1},
-            {"degree2", forcing::Quadrature::degree2},
-            {"degree4", forcing::Quadrature::degree4},
-            {"degree5", forcing::Quadrature::degree5}});
-  MapReader ocean = m.block("ocean");
-  ocean.number("density", d.water_density, positive("kg/m^3"));
-  read_velocity(ocean, "current", s.ocean_field);
-  read_term(ocean.block("form_drag"), d.form_drag, d.form_drag_coefficient, closed(0.0, 10.0, "-"));
-  read_term(ocean.block("moment_drag"), d.moment_drag, d.moment_drag_coefficient, closed(0.0, 10.0, "-"));
-  read_term(ocean.block("skin_drag"), d.skin_drag, d.skin_drag_coefficient, closed(0.0, 1.0, "-"));
-  ocean.finish();
-  MapReader air = m.block("air");
-  air.number("density", d.air_density, positive("kg/m^3"));
-  read_velocity(air, "wind", s.wind_field);
-  read_term(air.block("drag"), d.air_drag, d.air_drag_coefficient, closed(0.0, 1.0, "-"));
-  air.finish();
-  MapReader cor = m.block("coriolis");
-  cor.boolean("enabled", d.coriolis);
-  cor.number("latitude", d.latitude, closed(-90.0, 90.0, "deg"));
-  cor.boolean("beta_plane", d.beta_plane);
-  cor.number("reference_y", d.reference_y, any("m"));
-  cor.finish();
-  m.finish();
-  d.ocean = forcing::make_field(s.ocean_field);
-  d.wind = forcing::make_field(s.wind_field);
+void read_velocity(MapReader& m, const char* key, Velocity& v) {
+  if (m.has(v.shorthand) && m.has(key))
+    m.context().fail(m.self(), std::string("give only one of '") + v.shorthand + "' (uniform) and '" + key + "'");
+  Vec2 u = v.spec.velocity;
+  if (m.vec2(v.shorthand, u, "m/s")) v.spec = forcing::FieldSpec::uniform(u);
+  if (auto f = m.optional_block(key)) v.spec = read_field(*f);
 }
 
 void check_forcing(const Context& ctx, const Field& root, const Scene& s) {

@@ -1,12 +1,9 @@
-// The 'forcing' block of a scene (internal to dem/scene): drag terms, Coriolis, and the ocean and wind fields.
+// The 'forcing' block's checks across blocks (internal to dem/scene); its keys are declared in settings_schema.h.
 #pragma once
 
 #include "scene/schema.h"
 
 namespace polyfloe::scene::detail {
-
-// Reads forcing.* into s.world.drift, s.ocean_field and s.wind_field (and builds the fields).
-void read_forcing(MapReader m, Scene& s);
 
 // Scene-wide checks that need other blocks (run.duration, ice.density); throws SceneError.
 void check_forcing(const Context& ctx, const Field& root, const Scene& s);

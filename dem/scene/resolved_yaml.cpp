@@ -1,16 +1,20 @@
 // resolved_yaml(): every resolved setting of a Scene as YAML, with units as comments (printed by `polyfloe check`,
-// written next to the results, and read back by parse_scene to the same settings).
+// written next to the results, and read back by parse_scene to the same settings): the settings' declaration
+// (settings_schema.h) walked by a writer, and the writers of the keys that write themselves.
 #include <filesystem>
 #include <sstream>
 #include <system_error>
 
 #include "scene/scene_reader.h"
+#include "scene/settings_schema.h"
 #include "scene/yaml_format.h"
 
 namespace polyfloe::scene {
 
 using detail::fmt;
 using detail::quoted;
+
+namespace detail {
 
 namespace {
 
@@ -57,10 +61,163 @@ std::string field_yaml(const forcing::FieldSpec& f) {
   return o.str();
 }
 
-std::string opt(const std::optional<double>& x) { return x ? fmt(*x) : std::string("auto"); }
-const char* on(bool b) { return b ? "true" : "false"; }
+std::string vec3(const geometry::Vec3& v) { return "[" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]"; }
 
-// The comment lines: the scene, its file (one spelling) and the --set overrides; its name.
+// One line "key: value  # comment" (no comment when it is empty).
+void line(std::ostream& o, const std::string& indent, const char* key, const std::string& value,
+          const std::string& comment) {
+  o << indent << key << ": " << value << (comment.empty() ? "" : "  # " + comment) << "\n";
+}
+
+std::string with_unit(const char* unit, const char* comment) {
+  return "[" + std::string(unit) + "]" + (*comment ? " " + std::string(comment) : std::string());
+}
+
+// The visitor of settings_schema.h that writes the resolved scene: one key per line with its unit and comment; a
+// flow block on one line ({a: 1, b: 2}) with the block's comment.
+class SettingsWriter {
+ public:
+  explicit SettingsWriter(std::ostream& o) : o_(o) {}
+
+  void number(const char* key, double x, const Range& r, const char* comment) {
+    put(key, fmt(x), with_unit(r.unit, comment));
+  }
+  void number_or_auto(const char* key, const std::optional<double>& x, const Range& r, const char* comment) {
+    put(key, x ? fmt(*x) : std::string("auto"), with_unit(r.unit, comment));
+  }
+  void zero_is_auto(const char* key, double x, const Range& r, const char* comment) {
+    put(key, x > 0.0 ? fmt(x) : std::string("auto"), with_unit(r.unit, comment));
+  }
+  void integer(const char* key, int x, int, int, const char* comment) { put(key, std::to_string(x), comment); }
+  void unsigned64(const char* key, std::uint64_t x, const char* comment) { put(key, std::to_string(x), comment); }
+  void boolean(const char* key, bool x, const char* comment) { put(key, x ? "true" : "false", comment); }
+  void name(const char* key, const std::string& x, const char* comment) { put(key, quoted(x), comment); }
+  void vec2(const char* key, const Vec2& x, const char* unit, const char* comment) {
+    put(key, fmt(x), with_unit(unit, comment));
+  }
+  void vec3(const char* key, const geometry::Vec3& x, const char* unit, const char* comment) {
+    put(key, detail::vec3(x), with_unit(unit, comment));
+  }
+  template <class E>
+  void choice(const char* key, E x, std::initializer_list<std::pair<const char*, E>> options, const char* comment) {
+    for (const auto& [word, value] : options)
+      if (value == x) put(key, word, comment);
+  }
+  template <class F>
+  void block(const char* key, F&& fn) {
+    o_ << indent_ << key << ":\n";
+    indent_ += "  ";
+    fn(*this);
+    indent_.resize(indent_.size() - 2);
+  }
+  template <class F>
+  void flow(const char* key, const char* comment, F&& fn) {
+    flow_ = true;
+    fn(*this);
+    flow_ = false;
+    put(key, "{" + items_ + "}", comment);
+    items_.clear();
+  }
+  template <class T, class F>
+  void optional_block(const char* key, std::optional<T>& x, F&& fn) {
+    if (x) block(key, [&](SettingsWriter& w) { fn(w, *x); });
+  }
+  template <class T, class R>
+  void custom(const char* key, T& x, const char*, R,
+              void (*write)(std::ostream&, const std::string&, const char*, const T&)) {
+    write(o_, indent_, key, x);
+  }
+  template <class F>
+  void after(F&&) {}
+
+ private:
+  void put(const char* key, const std::string& value, const std::string& comment) {
+    if (flow_)
+      items_ += (items_.empty() ? "" : ", ") + std::string(key) + ": " + value;
+    else
+      line(o_, indent_, key, value, comment);
+  }
+  std::ostream& o_;
+  std::string indent_;
+  bool flow_ = false;
+  std::string items_;  // of the flow block being written
+};
+
+// A list: "key: []", or "key:" and its items.
+template <class T, class F>
+void write_list(std::ostream& o, const std::string& indent, const char* key, const std::vector<T>& items, F&& item) {
+  o << indent << key << (items.empty() ? ": []\n" : ":\n");
+  for (const T& x : items) item(x, indent + "  - ", indent + "    ");
+}
+
+std::string polygon_text(const std::vector<Vec2>& polygon) {
+  std::string t = "[";
+  for (std::size_t i = 0; i < polygon.size(); ++i) t += (i ? ", " : "") + fmt(polygon[i]);
+  return t + "]";
+}
+
+std::string from(const SourceRef& source) { return source.where.empty() ? "" : ", from " + source.where; }
+
+}  // namespace
+
+void write_region(std::ostream& o, const std::string& indent, const char* key,
+                  const std::optional<std::array<double, 4>>& r) {
+  line(o, indent, key,
+       r ? "[" + fmt((*r)[0]) + ", " + fmt((*r)[1]) + ", " + fmt((*r)[2]) + ", " + fmt((*r)[3]) + "]"
+         : std::string("auto"),
+       "[m] xmin, ymin, xmax, ymax");
+}
+
+void write_box(std::ostream& o, const std::string& indent, const char* key, const Box& b) {
+  write_region(o, indent, key, std::array<double, 4>{b.min.x(), b.min.y(), b.max.x(), b.max.y()});
+}
+
+void write_corners(std::ostream& o, const std::string& indent, const char* key, const FloeFieldSpec& f) {
+  line(o, indent, key, "[" + std::to_string(f.corners_min) + ", " + std::to_string(f.corners_max) + "]", "[-]");
+}
+
+void write_velocity(std::ostream& o, const std::string& indent, const char* key, const Velocity& v) {
+  line(o, indent, key, field_yaml(v.spec), v.shorthand == std::string_view("current") ? "[m], [m/s], [1/s], [s]" : "");
+}
+
+void write_floes(std::ostream& o, const std::string& indent, const char* key, const std::vector<BodySpec>& bodies) {
+  write_list(o, indent, key, bodies, [&](const BodySpec& b, const std::string& first, const std::string& in) {
+    o << first << "polygon: " << polygon_text(b.polygon) << "  # [m] body frame" << from(b.source) << "\n";
+    line(o, in, "position", fmt(b.position), "[m] centroid");
+    line(o, in, "yaw", fmt(b.yaw), "[rad]");
+    line(o, in, "velocity", fmt(b.velocity), "[m/s]");
+    line(o, in, "angular_velocity", fmt(b.angular_velocity), "[rad/s]");
+    line(o, in, "thickness", fmt(b.thickness), "[m]");
+    line(o, in, "motion", std::string(dynamics::to_string(b.motion)), "");
+    if (b.id) line(o, in, "id", std::to_string(*b.id), "");
+    line(o, in, "external_force", fmt(b.external_force), "[N]");
+    line(o, in, "external_torque", fmt(b.external_torque), "[N m]");
+  });
+}
+
+void write_spatial_bodies(std::ostream& o, const std::string& indent, const char* key,
+                          const std::vector<SpatialBodySpec>& bodies) {
+  write_list(o, indent, key, bodies, [&](const SpatialBodySpec& b, const std::string& first, const std::string& in) {
+    if (b.box)
+      o << first << "box: " << vec3(*b.box) << "  # [m] edge lengths" << from(b.source) << "\n";
+    else
+      o << first << "polygon: " << polygon_text(b.polygon) << "  # [m] body frame" << from(b.source) << "\n";
+    line(o, in, "thickness", fmt(b.thickness), "[m] (polygon prisms)");
+    line(o, in, "position", vec3(b.position), "[m] centroid");
+    line(o, in, "rotation", "{axis: " + vec3(b.rotation_axis) + ", angle: " + fmt(b.rotation_angle) + "}", "[rad]");
+    line(o, in, "velocity", vec3(b.velocity), "[m/s]");
+    line(o, in, "angular_velocity", vec3(b.angular_velocity), "[rad/s]");
+    if (b.density) line(o, in, "density", fmt(*b.density), "[kg/m^3]");
+    line(o, in, "motion", std::string(dynamics::to_string(b.motion)), "");
+    if (b.id) line(o, in, "id", std::to_string(*b.id), "");
+  });
+}
+
+}  // namespace detail
+
+namespace {
+
+// The comment lines: the scene, its file (one spelling) and the --set overrides.
 void put_header(std::ostream& o, const Scene& s) {
   o << "# Scene '" << s.name << "', every setting resolved (units in the comments).\n";
   if (!s.source_path.empty()) {  // one spelling of the file (links and '..' resolved): restarts compare this text
@@ -69,201 +226,15 @@ void put_header(std::ostream& o, const Scene& s) {
     o << "# from: " << (ec ? s.source_path : p.string()) << "\n";
   }
   for (const std::string& ov : s.overrides) o << "# --set " << ov << "\n";
-  o << "name: " << quoted(s.name) << "\n";
-}
-
-// `run` and `output`.
-void put_run_and_output(std::ostream& o, const Scene& s) {
-  o << "run:\n"
-    << "  duration: " << fmt(s.time.duration) << "  # [s] simulated time\n"
-    << "  dt: " << opt(s.time.dt) << "  # [s] time step; auto = shortest contact duration / steps_per_contact\n"
-    << "  steps_per_contact: " << fmt(s.time.steps_per_contact) << "  # [-]\n"
-    << "  reference_speed: " << opt(s.time.reference_speed)
-    << "  # [m/s] impact speed; auto = max(1 m/s, free-drift speed)\n";
-  o << "output:\n"
-    << "  interval: " << fmt(s.output.interval) << "  # [s] simulated time between frames\n"
-    << "  vtk: " << on(s.output.vtk) << "\n"
-    << "  contacts: " << on(s.output.contacts) << "\n"
-    << "  hdf5: " << on(s.output.hdf5) << "\n";
-  const VelocityGridSettings& g = s.output.velocity_grid;
-  o << "  velocity_grid:\n"
-    << "    enabled: " << on(g.enabled) << "\n"
-    << "    cell: " << fmt(g.cell) << "  # [m]\n"
-    << "    region: "
-    << (g.region ? "[" + fmt((*g.region)[0]) + ", " + fmt((*g.region)[1]) + ", " + fmt((*g.region)[2]) + ", " +
-                       fmt((*g.region)[3]) + "]"
-                 : std::string("auto"))
-    << "  # [m] xmin, ymin, xmax, ymax\n"
-    << "    samples_per_frame: " << g.samples_per_frame << "\n";
-  o << "  checkpoint:\n"
-    << "    every: " << s.output.checkpoint.every << "  # [frames] 0 = no checkpoints\n"
-    << "    keep: " << s.output.checkpoint.keep << "  # newest checkpoints kept\n";
-}
-
-// `ice` and `contact`.
-void put_ice_and_contact(std::ostream& o, const Scene& s) {
-  const contact::ContactLawSettings& c = s.world.contact;
-  o << "ice:\n"
-    << "  density: " << fmt(s.ice_density) << "  # [kg/m^3]\n"
-    << "  youngs_modulus: " << fmt(c.youngs_modulus) << "  # [Pa]\n"
-    << "  poisson_ratio: " << fmt(c.poisson_ratio) << "  # [-]\n";
-  o << "contact:\n"
-    << "  restitution: " << fmt(c.restitution) << "  # [-]\n"
-    << "  friction: " << fmt(c.friction) << "  # [-] Coulomb coefficient\n"
-    << "  damping_model: " << (c.damping == contact::DampingModel::paper ? "paper" : "speed_independent") << "\n"
-    << "  narrow_phase: " << (s.world.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa ? "gjk_epa" : "exact")
-    << "  # level floes: exact overlap polygon, or the paper's GJK-EPA (comparison)\n"
-    << "  force_model: " << contact::force_model_name(c.force_model) << "\n"
-    << "  broad_phase_cell: " << (s.world.broad_phase_cell > 0.0 ? fmt(s.world.broad_phase_cell) : std::string("auto"))
-    << "  # [m]\n"
-    << "  broad_phase_skin: " << (s.world.broad_phase_skin > 0.0 ? fmt(s.world.broad_phase_skin) : std::string("auto"))
-    << "  # [m] speed only: the contacts are the same for any value\n";
-}
-
-// `forcing` and `floes` (planar scenes).
-void put_forcing_and_floes(std::ostream& o, const Scene& s) {
-  if (!s.spatial) {  // spatial scenes have neither drift forcing nor floes
-    const forcing::DriftSettings& d = s.world.drift;
-    auto term = [&](bool enabled, double c) {
-      return std::string("{enabled: ") + on(enabled) + ", coefficient: " + fmt(c) + "}";
-    };
-    o << "forcing:\n"
-      << "  treatment: " << forcing::to_string(d.treatment) << "  # drag and Coriolis in the step\n"
-      << "  quadrature: " << forcing::to_string(d.quadrature) << "  # bottom and top drag integrals\n"
-      << "  update_every: " << d.update_every << "  # [-] steps per full drift evaluation (between: its linear model)\n"
-      << "  ocean:\n"
-      << "    density: " << fmt(d.water_density) << "  # [kg/m^3]\n"
-      << "    field: " << field_yaml(s.ocean_field) << "  # [m], [m/s], [1/s], [s]\n"
-      << "    form_drag: " << term(d.form_drag, d.form_drag_coefficient) << "  # C_d^F [-]\n"
-      << "    moment_drag: " << term(d.moment_drag, d.moment_drag_coefficient) << "  # C_d^M [-]\n"
-      << "    skin_drag: " << term(d.skin_drag, d.skin_drag_coefficient) << "  # c_w [-]\n"
-      << "  air:\n"
-      << "    density: " << fmt(d.air_density) << "  # [kg/m^3]\n"
-      << "    field: " << field_yaml(s.wind_field) << "\n"
-      << "    drag: " << term(d.air_drag, d.air_drag_coefficient) << "  # c_a [-]\n"
-      << "  coriolis: {enabled: " << on(d.coriolis) << ", latitude: " << fmt(d.latitude)
-      << ", beta_plane: " << on(d.beta_plane) << ", reference_y: " << fmt(d.reference_y) << "}  # [deg], [m]\n";
-    if (s.bodies.empty())
-      o << "floes: []\n";
-    else
-      o << "floes:\n";
-    for (const BodySpec& b : s.bodies) {
-      o << "  - polygon: [";
-      for (std::size_t i = 0; i < b.polygon.size(); ++i) o << (i ? ", " : "") << fmt(b.polygon[i]);
-      o << "]  # [m] body frame" << (b.source.where.empty() ? "" : ", from " + b.source.where) << "\n"
-        << "    position: " << fmt(b.position) << "  # [m] centroid\n"
-        << "    yaw: " << fmt(b.yaw) << "  # [rad]\n"
-        << "    velocity: " << fmt(b.velocity) << "  # [m/s]\n"
-        << "    angular_velocity: " << fmt(b.angular_velocity) << "  # [rad/s]\n"
-        << "    thickness: " << fmt(b.thickness) << "  # [m]\n"
-        << "    motion: " << dynamics::to_string(b.motion) << "\n";
-      if (b.id) o << "    id: " << *b.id << "\n";
-      o << "    external_force: " << fmt(b.external_force) << "  # [N]\n"
-        << "    external_torque: " << fmt(b.external_torque) << "  # [N m]\n";
-    }
-  }
-}
-
-// `floe_field`.
-void put_floe_field(std::ostream& o, const Scene& s) {
-  if (const auto& f = s.floe_field) {
-    o << "floe_field:\n"
-      << "  region: [" << fmt(f->region_min.x()) << ", " << fmt(f->region_min.y()) << ", " << fmt(f->region_max.x())
-      << ", " << fmt(f->region_max.y()) << "]  # [m] xmin, ymin, xmax, ymax\n"
-      << "  concentration: " << fmt(f->concentration) << "  # [-] ice area / region area\n"
-      << "  size: {min: " << fmt(f->size_min) << ", max: " << fmt(f->size_max) << ", exponent: " << fmt(f->exponent)
-      << "}  # [m], [m], [-]; size = diameter of the area-equivalent circle\n"
-      << "  corners: [" << f->corners_min << ", " << f->corners_max << "]  # [-]\n"
-      << "  shape: " << (f->shape == FloeShape::voronoi ? "voronoi" : "ellipse") << "\n"
-      << "  aspect_max: " << fmt(f->aspect_max) << "  # [-] ellipse shapes: axis ratio uniform in [1, aspect_max]\n"
-      << "  thickness: " << fmt(f->thickness) << "  # [m]\n"
-      << "  velocity: " << fmt(f->velocity) << "  # [m/s]\n"
-      << "  seed: " << f->seed << "\n"
-      << "  max_attempts: " << f->max_attempts << "  # [-] placement tries per floe\n";
-  }
-}
-
-// `ice_sheet`.
-void put_ice_sheet(std::ostream& o, const Scene& s) {
-  if (const auto& sh = s.ice_sheet) {
-    o << "ice_sheet:\n"
-      << "  region: [" << fmt(sh->region_min.x()) << ", " << fmt(sh->region_min.y()) << ", " << fmt(sh->region_max.x())
-      << ", " << fmt(sh->region_max.y()) << "]  # [m] xmin, ymin, xmax, ymax\n"
-      << "  cell_size: " << fmt(sh->cell_size) << "  # [m] diameter of the circle of the mean cell area\n"
-      << "  relaxation: " << sh->relaxation << "  # [-] Lloyd iterations\n"
-      << "  thickness: " << fmt(sh->thickness) << "  # [m]\n"
-      << "  velocity: " << fmt(sh->velocity) << "  # [m/s]\n"
-      << "  seed: " << sh->seed << "\n"
-      << "  elements: " << (sh->elements == SheetElements::triangles ? "triangles" : "cells") << "\n";
-    if (const auto& b = sh->bonds) {
-      o << "  bonds:\n"
-        << "    tensile_strength: " << fmt(b->tensile_strength) << "  # [Pa]\n"
-        << "    shear_strength: " << fmt(b->shear_strength) << "  # [Pa] Mohr-Coulomb cohesion\n"
-        << "    friction_angle: " << fmt(b->friction_angle) << "  # [rad]\n"
-        << "    points_per_face: " << b->points_per_face << "\n"
-        << "    damping_ratio: " << fmt(b->damping_ratio) << "  # [-]\n";
-    }
-  }
-}
-
-// `spatial`.
-void put_spatial(std::ostream& o, const Scene& s) {
-  if (const auto& sp = s.spatial) {
-    auto v3 = [](const geometry::Vec3& v) { return "[" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]"; };
-    o << "spatial:\n"
-      << "  gravity: " << v3(sp->gravity) << "  # [m/s^2]\n"
-      << "  buoyancy: " << on(sp->buoyancy) << "\n"
-      << "  water_level: " << fmt(sp->water_level) << "  # [m]\n"
-      << "  water_density: " << fmt(sp->water_density) << "  # [kg/m^3]\n"
-      << "  narrow_phase: " << dynamics::to_string(sp->narrow_phase) << "\n"
-      << "  contact_point: " << (sp->contact_point == dynamics::ContactPointModel::manifold ? "manifold" : "witness")
-      << "\n";
-    o << (sp->bodies.empty() ? "  bodies: []\n" : "  bodies:\n");
-    for (const SpatialBodySpec& b : sp->bodies) {
-      if (b.box) {
-        o << "    - box: " << v3(*b.box) << "  # [m] edge lengths";
-      } else {
-        o << "    - polygon: [";
-        for (std::size_t i = 0; i < b.polygon.size(); ++i) o << (i ? ", " : "") << fmt(b.polygon[i]);
-        o << "]  # [m] body frame";
-      }
-      o << (b.source.where.empty() ? "" : ", from " + b.source.where) << "\n";
-      o << "      thickness: " << fmt(b.thickness) << "  # [m] (polygon prisms)\n"
-        << "      position: " << v3(b.position) << "  # [m] centroid\n"
-        << "      rotation: {axis: " << v3(b.rotation_axis) << ", angle: " << fmt(b.rotation_angle) << "}  # [rad]\n"
-        << "      velocity: " << v3(b.velocity) << "  # [m/s]\n"
-        << "      angular_velocity: " << v3(b.angular_velocity) << "  # [rad/s]\n";
-      if (b.density) o << "      density: " << fmt(*b.density) << "  # [kg/m^3]\n";
-      o << "      motion: " << dynamics::to_string(b.motion) << "\n";
-      if (b.id) o << "      id: " << *b.id << "\n";
-    }
-  }
-}
-
-// `channel`.
-void put_channel(std::ostream& o, const Scene& s) {
-  if (const auto& ch = s.channel) {
-    o << "channel:\n"
-      << "  basin_x_min: " << fmt(ch->basin_x_min) << "  # [m]\n"
-      << "  basin_x_max: " << fmt(ch->basin_x_max) << "  # [m]\n"
-      << "  basin_y_min: " << fmt(ch->basin_y_min) << "  # [m]\n"
-      << "  basin_y_max: " << fmt(ch->basin_y_max) << "  # [m]\n"
-      << "  funnel_length: " << fmt(ch->funnel_length) << "  # [m]\n"
-      << "  opening: " << fmt(ch->opening) << "  # [m]\n"
-      << "  strait_length: " << fmt(ch->strait_length) << "  # [m]\n"
-      << "  wall_thickness: " << fmt(ch->wall_thickness) << "  # [m]\n"
-      << "  jam_window: " << fmt(ch->jam_window) << "  # [s] jammed: no ice through the strait entrance this long\n"
-      << "  jam_speed: " << fmt(ch->jam_speed) << "  # [m/s] ... with the funnel's ice slower than this\n";
-  }
 }
 
 }  // namespace
 
 std::string resolved_yaml(const Scene& s) {
   std::ostringstream o;
-  for (auto put : {put_header, put_run_and_output, put_ice_and_contact, put_forcing_and_floes, put_floe_field,
-                   put_ice_sheet, put_spatial, put_channel})
-    put(o, s);
+  put_header(o, s);
+  detail::SettingsWriter w(o);
+  detail::scene_keys(w, const_cast<Scene&>(s));  // the writer only reads
   return o.str();
 }
 

@@ -22,8 +22,8 @@
 
 #include "contact/narrow_phase_planar.h"
 #include "scene/channel.h"
-#include "scene/body_reader.h"
 #include "scene/forcing_reader.h"
+#include "scene/settings_schema.h"
 #include "scene/yaml_format.h"
 #include "scene/yaml_limits.h"
 
@@ -36,107 +36,10 @@ namespace {
 
 using namespace detail;
 
-// ---------------------------------------------------------------------------------------------------------------
-// The schema, one block per function
-
-void read_run(MapReader m, TimeSettings& t) {
-  m.number("duration", t.duration, positive("s"));
-  m.number_or_auto("dt", t.dt, positive("s"));
-  m.number("steps_per_contact", t.steps_per_contact, at_least(dynamics::kMinStepsPerContact, "-"));
-  m.number_or_auto("reference_speed", t.reference_speed, positive("m/s"));
-  m.finish();
-}
-
-void read_velocity_grid(MapReader m, VelocityGridSettings& g) {
-  const Context& ctx = m.context();
-  m.boolean("enabled", g.enabled);
-  m.number("cell", g.cell, positive("m"));
-  if (auto f = m.take("region")) {
-    if (is_word(f->value, "auto"))
-      g.region.reset();
-    else
-      g.region = to_box(ctx, *f);
-  }
-  m.integer("samples_per_frame", g.samples_per_frame, 1, 1000);
-  if (g.region) {  // the automatic region is checked when the world is built
-    const double cells =
-        std::ceil(((*g.region)[2] - (*g.region)[0]) / g.cell) * std::ceil(((*g.region)[3] - (*g.region)[1]) / g.cell);
-    if (cells > VelocityGridSettings::kMaxCells) {
-      const auto f = m.take("cell");
-      ctx.fail(f ? *f : m.self(), "the velocity grid would have " + fmt(cells) + " cells (at most " +
-                                      fmt(VelocityGridSettings::kMaxCells) +
-                                      "): raise output.velocity_grid.cell or shrink its region");
-    }
-  }
-  m.finish();
-}
-
-void read_output(MapReader m, OutputSettings& o) {
-  m.number("interval", o.interval, positive("s"));
-  m.boolean("vtk", o.vtk);
-  m.boolean("contacts", o.contacts);
-  m.boolean("hdf5", o.hdf5);
-  read_velocity_grid(m.block("velocity_grid"), o.velocity_grid);
-  {
-    MapReader c = m.block("checkpoint");
-    c.integer("every", o.checkpoint.every, 0, 100000);
-    c.integer("keep", o.checkpoint.keep, 1, 1000);
-    c.finish();
-  }
-  m.finish();
-}
-
-void read_ice(MapReader m, Scene& s) {
-  // Bounds that keep every derived quantity (contact stiffness, duration, the automatic step) a normal double.
-  m.number("density", s.ice_density, closed(1.0, 1e5, "kg/m^3"));
-  m.number("youngs_modulus", s.world.contact.youngs_modulus, closed(1e3, 1e13, "Pa"));
-  m.number("poisson_ratio", s.world.contact.poisson_ratio, Range{0.0, 0.5, false, true, "-"});
-  m.finish();
-}
-
-void read_contact(MapReader m, dynamics::WorldSettings& w) {
-  m.number("restitution", w.contact.restitution, Range{0.0, 1.0, true, false, "-"});
-  m.number("friction", w.contact.friction, closed(0.0, 10.0, "-"));
-  m.choice("damping_model", w.contact.damping,
-           {{"speed_independent", contact::DampingModel::speed_independent}, {"paper", contact::DampingModel::paper}});
-  m.choice("narrow_phase", w.narrow_phase,
-           {{"exact", dynamics::PlanarNarrowPhase::exact}, {"gjk_epa", dynamics::PlanarNarrowPhase::gjk_epa}});
-  m.choice("force_model", w.contact.force_model,
-           {{"centroid", contact::ForceModel::centroid},
-            {"gradient", contact::ForceModel::gradient},
-            {"foundation", contact::ForceModel::foundation}});
-  if (w.contact.force_model == contact::ForceModel::foundation &&
-      w.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa) {
-    const auto f = m.take("narrow_phase");
-    m.context().fail(f ? *f : m.self(),
-                     "force_model 'foundation' integrates over the overlap polygon, which only "
-                     "the 'exact' narrow phase finds: set narrow_phase: exact, or another force_model");
-  }
-  std::optional<double> cell;
-  if (w.broad_phase_cell > 0.0) cell = w.broad_phase_cell;
-  m.number_or_auto("broad_phase_cell", cell, positive("m"));
-  w.broad_phase_cell = cell.value_or(0.0);
-  std::optional<double> skin;
-  if (w.broad_phase_skin > 0.0) skin = w.broad_phase_skin;
-  m.number_or_auto("broad_phase_skin", skin, positive("m"));
-  w.broad_phase_skin = skin.value_or(0.0);
-  m.finish();
-}
-
 void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   MapReader top(ctx, {root, YAML::Node(), ""});
-  top.file_name("name", s.name);
-  read_run(top.block("run"), s.time);
-  read_output(top.block("output"), s.output);
-  read_ice(top.block("ice"), s);
-  read_contact(top.block("contact"), s.world);
-  read_forcing(top.block("forcing"), s);
-  if (auto f = top.take("floes")) read_floes(ctx, *f, s.bodies);
-  if (auto m = top.optional_block("floe_field")) s.floe_field = read_floe_field(*m);
-  if (auto m = top.optional_block("ice_sheet")) s.ice_sheet = read_ice_sheet(*m);
-  if (auto m = top.optional_block("channel")) s.channel = read_channel(*m);
+  scene_keys(top, s);
   const bool has_forcing = top.has("forcing");
-  if (auto m = top.optional_block("spatial")) s.spatial = read_spatial(*m);
   top.finish();
   if (s.spatial) {
     // Spatial scenes have polyhedra, gravity and buoyancy; level-floe content would be silently ignored.

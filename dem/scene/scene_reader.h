@@ -31,4 +31,18 @@ Scene parse_scene(const std::string& text, const std::string& display_name,
 // Explicit bodies given as 'regular' or 'rectangle' appear as their polygon; yaw_deg appears as yaw [rad].
 std::string resolved_yaml(const Scene& scene);
 
+// One key of the scene schema, as the settings' declaration gives it (for the check of docs/scene-reference.md
+// and the tests' comparison of scenes).
+struct SchemaKey {
+  std::string path;                  // dotted: "output.velocity_grid.cell"
+  std::string kind;                  // number, integer, boolean, text, vec2, vec3, choice, block, flow, custom
+  std::string unit;                  // "m", "-", ...; empty where the key has none
+  std::vector<std::string> choices;  // the words a choice takes
+  std::string value;                 // its value in the scene, as the resolved scene writes it (blocks: empty)
+  std::string comment;               // the resolved scene's comment
+};
+// Every key of `scene` in the declared order. An optional block the scene lacks is listed with its defaults when
+// `with_absent` (the whole schema: schema_keys(Scene{}, true)), else left out.
+std::vector<SchemaKey> schema_keys(const Scene& scene, bool with_absent);
+
 }  // namespace polyfloe::scene

@@ -1,12 +1,15 @@
 // The scene schema walker (internal to dem/scene): a MapReader wraps one YAML map, its typed getters read a key
 // (leaving the default in place when it is absent) and record it as known, and finish() reports any key nobody
-// asked for. The schema itself is the sequence of getter calls in the read_*() functions of the readers.
+// asked for. The schema itself is declared in settings_schema.h, which a MapReader walks as one of its visitors
+// (the getters take the key's comment for the other visitors and ignore it); the explicit bodies, the field blocks
+// and the spatial bodies are read by functions of their own (body_reader.cpp, forcing_reader.cpp).
 #pragma once
 
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -113,6 +116,7 @@ std::uint64_t to_unsigned64(const Context& ctx, const Field& f);
 bool to_bool(const Context& ctx, const Field& f);
 std::vector<Field> list_items(const Context& ctx, const Field& f, const std::string& what);
 Vec2 to_vec2(const Context& ctx, const Field& f, const Range& r);
+geometry::Vec3 to_vec3(const Context& ctx, const Field& f, const Range& r);
 std::vector<Vec2> to_polygon(const Context& ctx, const Field& f);
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -155,13 +159,13 @@ class MapReader {
   }
 
   // Typed getters: `out` keeps its default when the key is absent. They return whether the key was given.
-  bool number(const char* key, double& out, const Range& r) {
+  bool number(const char* key, double& out, const Range& r, const char* /*comment*/ = "") {
     const auto f = take(key);
     if (f) out = to_number(ctx_, *f, r);
     return f.has_value();
   }
   // A number, or the word 'auto' (stored as empty).
-  bool number_or_auto(const char* key, std::optional<double>& out, const Range& r) {
+  bool number_or_auto(const char* key, std::optional<double>& out, const Range& r, const char* /*comment*/ = "") {
     const auto f = take(key);
     if (!f) return false;
     if (is_word(f->value, "auto"))
@@ -170,12 +174,12 @@ class MapReader {
       out = to_number(ctx_, *f, r, " or 'auto'");
     return true;
   }
-  bool integer(const char* key, int& out, int lo, int hi) {
+  bool integer(const char* key, int& out, int lo, int hi, const char* /*comment*/ = "") {
     const auto f = take(key);
     if (f) out = static_cast<int>(to_integer(ctx_, *f, lo, hi));
     return f.has_value();
   }
-  bool unsigned64(const char* key, std::uint64_t& out) {
+  bool unsigned64(const char* key, std::uint64_t& out, const char* /*comment*/ = "") {
     const auto f = take(key);
     if (f) out = to_unsigned64(ctx_, *f);
     return f.has_value();
@@ -186,7 +190,7 @@ class MapReader {
     out = x;
     return true;
   }
-  bool boolean(const char* key, bool& out) {
+  bool boolean(const char* key, bool& out, const char* /*comment*/ = "") {
     const auto f = take(key);
     if (f) out = to_bool(ctx_, *f);
     return f.has_value();
@@ -213,13 +217,28 @@ class MapReader {
                     excerpt(out) + "'");
     return true;
   }
-  bool vec2(const char* key, Vec2& out, const char* unit) {
+  bool vec2(const char* key, Vec2& out, const char* unit, const char* /*comment*/ = "") {
     const auto f = take(key);
     if (f) out = to_vec2(ctx_, *f, any(unit));
     return f.has_value();
   }
+  bool vec3(const char* key, geometry::Vec3& out, const char* unit, const char* /*comment*/ = "") {
+    const auto f = take(key);
+    if (f) out = to_vec3(ctx_, *f, any(unit));
+    return f.has_value();
+  }
+  // A number, or the word 'auto' (stored as 0).
+  bool zero_is_auto(const char* key, double& out, const Range& r, const char* comment = "") {
+    std::optional<double> x;
+    if (out > 0.0) x = out;
+    const bool given = number_or_auto(key, x, r, comment);
+    out = x.value_or(0.0);
+    return given;
+  }
+  bool name(const char* key, std::string& out, const char* /*comment*/ = "") { return file_name(key, out); }
   template <class E>
-  bool choice(const char* key, E& out, std::initializer_list<std::pair<const char*, E>> options) {
+  bool choice(const char* key, E& out, std::initializer_list<std::pair<const char*, E>> options,
+              const char* /*comment*/ = "") {
     const auto f = take(key);
     if (!f) return false;
     std::string names;
@@ -244,8 +263,35 @@ class MapReader {
     return MapReader(ctx_, *f);
   }
 
-  // Every key given must have been asked for.
-  void finish() const {
+  // The settings_schema.h visitor's blocks: each is read by `fn(reader)` and finished.
+  template <class F>
+  void block(const char* key, F&& fn) {
+    MapReader sub = block(key);
+    fn(sub);
+    sub.finish();
+  }
+  template <class F>
+  void flow(const char* key, const char* /*comment*/, F&& fn) {
+    block(key, std::forward<F>(fn));
+  }
+  template <class T, class F>
+  void optional_block(const char* key, std::optional<T>& out, F&& fn) {
+    if (auto sub = optional_block(key)) {
+      out.emplace();
+      fn(*sub, *out);
+      sub->finish();
+    }
+  }
+  // A key with a reader of its own (which takes the key; and may take others, as 'current' beside 'field').
+  template <class T, class W>
+  void custom(const char* key, T& member, const char* /*comment*/, void (*read)(MapReader&, const char*, T&), W) {
+    read(*this, key, member);
+  }
+  // A check across the block's keys, run by finish() once every key is read and none is unknown.
+  void after(std::function<void(MapReader&)> check) { after_.push_back(std::move(check)); }
+
+  // Every key given must have been asked for; then the after() checks.
+  void finish() {
     for (const Entry& e : entries_) {
       if (e.used || std::find(known_.begin(), known_.end(), e.name) != known_.end()) continue;
       std::string allowed;
@@ -254,6 +300,9 @@ class MapReader {
       const Field f{e.key, e.key, join(self_.path, e.name)};
       throw SceneError(ctx_.where(f) + ": unknown key '" + excerpt(f.path) + "'; allowed " + in + ": " + allowed);
     }
+    const std::vector<std::function<void(MapReader&)>> checks = std::move(after_);
+    after_.clear();
+    for (const auto& check : checks) check(*this);
   }
 
  private:
@@ -266,6 +315,7 @@ class MapReader {
   Field self_;
   std::vector<Entry> entries_;
   std::vector<std::string> known_;
+  std::vector<std::function<void(MapReader&)>> after_;
 };
 
 }  // namespace polyfloe::scene::detail
