@@ -12,19 +12,20 @@
 namespace polyfloe::dynamics {
 
 SlotView World::slot_view() const {
-  return {order_.slots(), order_.body_slots(), slot_static_, boxes_, slot_dynamic_, world_xy_, pos_, yaw_, reach_};
+  return {order_.slots(), order_.body_slots(), slot_static_, boxes_,       slot_dynamic_,
+          world_xy_,      bodies_.pos,         bodies_.yaw,  bodies_.reach};
 }
 
 void World::sum_contacts(int n) {
   const ContactSum::Totals& t =
       sum_.sum({pairs_, pair_results_, pair_hit_, slot_static_, kOverlapLimit}, threads_, lists_, cache_);
-  // Into the bodies' sums, in body order: each thread writes its own stretch of force_ and torque_ (written by
+  // Into the bodies' sums, in body order: each thread writes its own stretch of bodies_.force and bodies_.torque (written by
   // slot from the sum's blocks, neighbouring bodies of different blocks would share cache lines).
   POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i) {
     const int k = order_.slot_of(i);
-    force_[i] += sum_.slot_force(k);
-    torque_[i] += sum_.slot_torque(k);
+    bodies_.force[i] += sum_.slot_force(k);
+    bodies_.torque[i] += sum_.slot_torque(k);
   }
   contacts_.clear();
   contacts_ready_ = false;  // the records are listed from pair_results_ when asked for (contacts())
@@ -167,8 +168,9 @@ const std::vector<ContactRecord>& World::contacts() const {
     // its approach rate by the final half kick, through w = the inverse of its effective mass along its
     // direction (with the arms). A contact's first step: it began tau = extent / rate before now (at most dt).
     contact::DampingStep step;
-    step.inverse_mass = inv_mass_[A.body] + inv_mass_[B.body] + inv_inertia_[A.body] * d.arm_a * d.arm_a +
-                        inv_inertia_[B.body] * d.arm_b * d.arm_b;
+    step.inverse_mass = bodies_.inv_mass[A.body] + bodies_.inv_mass[B.body] +
+                        bodies_.inv_inertia[A.body] * d.arm_a * d.arm_a +
+                        bodies_.inv_inertia[B.body] * d.arm_b * d.arm_b;
     step.last_normal = last.normal_force;
     if (!continuing) step.since_entry = d.rate > 0.0 ? std::min(g.extent / d.rate, stage.dt) : stage.dt;
     r.cf = law_.evaluate_stiffness(k, d.elastic, d.stiffness, d.exponent, d.rate, d.slip, last.spring, stage.dt, step);

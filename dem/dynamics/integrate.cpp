@@ -25,22 +25,22 @@ bool World::kick_and_move(double dt) {
   POLYFLOE_OMP_FOR_ANY(threads_, changed, outrun)
   for (int ii = 0; ii < n; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
-    Vec2 f = force_[i];
-    double t = torque_[i];
+    Vec2 f = bodies_.force[i];
+    double t = bodies_.torque[i];
     if (drift_.damped(i)) {
       // Other forces, and Coriolis at v_n: the first half of its trapezoidal rule.
       const forcing::DriftLoad& d = drift_.load(i);
-      f -= d.force + d.mf * geometry::perp_left(vel_[i]);
+      f -= d.force + d.mf * geometry::perp_left(bodies_.vel[i]);
       t -= d.torque;
     }
-    vel_[i] += (half_dt * inv_mass_[i]) * f;
-    omega_[i] += half_dt * inv_inertia_[i] * t;
-    if (motion_[i] != Motion::fixed) {
-      pos_[i] += dt * vel_[i];
-      yaw_[i] += dt * omega_[i];
+    bodies_.vel[i] += (half_dt * bodies_.inv_mass[i]) * f;
+    bodies_.omega[i] += half_dt * bodies_.inv_inertia[i] * t;
+    if (bodies_.motion[i] != Motion::fixed) {
+      bodies_.pos[i] += dt * bodies_.vel[i];
+      bodies_.yaw[i] += dt * bodies_.omega[i];
     }
-    changed = order_.set_key(ii, pos_[i]) || changed;
-    if (lists) outrun = !lists_.within(i, pos_[i], yaw_[i], reach_[i]) || outrun;
+    changed = order_.set_key(ii, bodies_.pos[i]) || changed;
+    if (lists) outrun = !lists_.within(i, bodies_.pos[i], bodies_.yaw[i], bodies_.reach[i]) || outrun;
   }
   lists_.set_kick_verdict(!lists || outrun);
   return changed;
@@ -58,9 +58,9 @@ void World::kick_implicit(double dt) {
     for (int ii = blk * kSummaryBlock, end = std::min(n, ii + kSummaryBlock); ii < end; ++ii) {
       const std::size_t i = static_cast<std::size_t>(ii);
       const forcing::DriftLoad& d = drift_.load(i);  // and its linear model, set by compute_forces()
-      if (!is_dynamic_[i] || !d.has_damping()) {
-        vel_[i] += (half_dt * inv_mass_[i]) * force_[i];
-        omega_[i] += half_dt * inv_inertia_[i] * torque_[i];
+      if (!bodies_.is_dynamic[i] || !d.has_damping()) {
+        bodies_.vel[i] += (half_dt * bodies_.inv_mass[i]) * bodies_.force[i];
+        bodies_.omega[i] += half_dt * bodies_.inv_inertia[i] * bodies_.torque[i];
       } else {
         // Drag linear in v with each sample's speed factor frozen at the prediction v*: F_d(v) = b - D v;
         // Coriolis F_c(v) = -C v. With F_o the other forces at the end of the step and v the half-kicked velocity
@@ -69,17 +69,17 @@ void World::kick_implicit(double dt) {
         // i.e. backward Euler for drag (L-stable: no ringing at dt >> the relaxation time, and the steady state of
         // the step is the true balance F_o + b - D v - C v = 0) and the trapezoidal rule for Coriolis (a Cayley
         // rotation: the speed of an inertial oscillation is kept exactly).
-        const DriftModel::Velocity v =
-            drift_.implicit_velocity(i, dt, drift_.inverse_of(i, dt, mass_[i], inertia_[i]), mass_[i], inertia_[i],
-                                     vel_[i], omega_[i], force_[i], torque_[i]);
-        vel_[i] = v.u;
-        omega_[i] = v.w;
-        // The drift load at the new velocity (the linear model's), so force_ stays the total force.
-        const Vec2 f_other = force_[i] - d.force;
-        const double t_other = torque_[i] - d.torque;
+        const DriftModel::Velocity v = drift_.implicit_velocity(
+            i, dt, drift_.inverse_of(i, dt, bodies_.mass[i], bodies_.inertia[i]), bodies_.mass[i], bodies_.inertia[i],
+            bodies_.vel[i], bodies_.omega[i], bodies_.force[i], bodies_.torque[i]);
+        bodies_.vel[i] = v.u;
+        bodies_.omega[i] = v.w;
+        // The drift load at the new velocity (the linear model's), so bodies_.force stays the total force.
+        const Vec2 f_other = bodies_.force[i] - d.force;
+        const double t_other = bodies_.torque[i] - d.torque;
         drift_.set_linear_load(i, v.u, v.w);
-        force_[i] = f_other + d.force;
-        torque_[i] = t_other + d.torque;
+        bodies_.force[i] = f_other + d.force;
+        bodies_.torque[i] = t_other + d.torque;
       }
       add_motion(i, sum);
     }
@@ -96,12 +96,13 @@ void World::merge_motion_blocks() const {
 
 void World::add_motion(std::size_t i, MotionSummary& s) const {
   // A NaN or infinity anywhere in the pose or the velocity makes the sum non-finite.
-  s.all_finite &= std::isfinite(pos_[i].x() + pos_[i].y() + yaw_[i] + vel_[i].x() + vel_[i].y() + omega_[i]);
-  if (!is_dynamic_[i]) return;
-  const double v2 = vel_[i].squaredNorm();
+  s.all_finite &= std::isfinite(bodies_.pos[i].x() + bodies_.pos[i].y() + bodies_.yaw[i] + bodies_.vel[i].x() +
+                                bodies_.vel[i].y() + bodies_.omega[i]);
+  if (!bodies_.is_dynamic[i]) return;
+  const double v2 = bodies_.vel[i].squaredNorm();
   s.max_speed2 = std::max(s.max_speed2, v2);
-  s.max_spin_speed = std::max(s.max_spin_speed, std::abs(omega_[i]) * reach_[i]);
-  s.energy += 0.5 * mass_[i] * v2 + 0.5 * inertia_[i] * omega_[i] * omega_[i];
+  s.max_spin_speed = std::max(s.max_spin_speed, std::abs(bodies_.omega[i]) * bodies_.reach[i]);
+  s.energy += 0.5 * bodies_.mass[i] * v2 + 0.5 * bodies_.inertia[i] * bodies_.omega[i] * bodies_.omega[i];
 }
 
 const StepReport& World::report() const {
@@ -116,12 +117,12 @@ const StepReport& World::report() const {
 }
 
 void World::update_shape(int i) {
-  const double c = std::cos(yaw_[i]), s = std::sin(yaw_[i]);
+  const double c = std::cos(bodies_.yaw[i]), s = std::sin(bodies_.yaw[i]);
   rotation_[i] = {c, s};
-  const Vec2* local = local_xy_.data() + vert_off_[i];
-  const int count = vert_off_[i + 1] - vert_off_[i];
+  const Vec2* local = bodies_.local_xy.data() + bodies_.vert_off[i];
+  const int count = bodies_.vert_off[i + 1] - bodies_.vert_off[i];
   Vec2* out = world_xy_.data() + vert_begin_[i];
-  const Vec2 p = pos_[i];  // (held in a register: the stores to `out` could otherwise alias it)
+  const Vec2 p = bodies_.pos[i];  // (held in a register: the stores to `out` could otherwise alias it)
   geometry::Aabb box{p, p};
   for (int k = 0; k < count; ++k) {
     out[k] = p + geometry::rotate(local[k], c, s);
@@ -137,7 +138,7 @@ bool World::set_slot_keys() {
   const int n = static_cast<int>(size());
   bool changed = false;
   POLYFLOE_OMP_FOR_ANY(threads_, changed)
-  for (int i = 0; i < n; ++i) changed = order_.set_key(i, pos_[static_cast<std::size_t>(i)]) || changed;
+  for (int i = 0; i < n; ++i) changed = order_.set_key(i, bodies_.pos[static_cast<std::size_t>(i)]) || changed;
   return changed;
 }
 
@@ -153,11 +154,11 @@ void World::sort_slots(bool keys_changed) {
       const int i = order_.body_at(k);
       vert_begin_[i] = off;
       slot_static_[k] = slot_static_of(i, off);
-      slot_dynamic_[k] = is_dynamic_[i];
+      slot_dynamic_[k] = bodies_.is_dynamic[i];
       off += slot_static_[k].vert_count;
     }
     for (int k = first; k <= last; ++k)
-      if (motion_[order_.body_at(k)] == Motion::fixed) update_shape(order_.body_at(k));
+      if (bodies_.motion[order_.body_at(k)] == Motion::fixed) update_shape(order_.body_at(k));
   }
 }
 
@@ -166,7 +167,7 @@ void World::update_shapes() {
   const int n = static_cast<int>(size());
   POLYFLOE_OMP_FOR(threads_)
   for (int i = 0; i < n; ++i)
-    if (motion_[i] != Motion::fixed) update_shape(i);
+    if (bodies_.motion[i] != Motion::fixed) update_shape(i);
 }
 
 }  // namespace polyfloe::dynamics

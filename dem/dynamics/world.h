@@ -20,6 +20,7 @@
 #include "contact/contact_law.h"
 #include "contact/narrow_phase_gjk2d.h"
 #include "contact/narrow_phase_planar.h"
+#include "dynamics/bodies.h"
 #include "dynamics/body.h"
 #include "dynamics/contact_sum.h"
 #include "dynamics/drift_model.h"
@@ -131,7 +132,7 @@ class World {
 
   // Adds a body and returns its index. Throws std::invalid_argument on a duplicate id or bad values.
   int add_body(const BodyDesc& desc);
-  std::size_t size() const { return id_.size(); }
+  std::size_t size() const { return bodies_.id.size(); }
 
   // Advance by dt [s]: velocity-Verlet (kick, move, kick), forces evaluated at the new positions with the
   // half-step velocities. Returns the step's report: the bodies' motion (gathered in the final kick's loop, no
@@ -153,27 +154,27 @@ class World {
   }
 
   // --- state (indices 0..size()-1) ---
-  std::span<const Vec2> positions() const { return pos_; }               // [m]
-  std::span<const double> yaws() const { return yaw_; }                  // [rad]
-  std::span<const Vec2> velocities() const { return vel_; }              // [m/s]
-  std::span<const double> angular_velocities() const { return omega_; }  // [rad/s]
-  std::span<const Vec2> forces() const { return force_; }                // total force of the last evaluation [N]
-  std::span<const double> torques() const { return torque_; }            // [N m]
+  std::span<const Vec2> positions() const { return bodies_.pos; }               // [m]
+  std::span<const double> yaws() const { return bodies_.yaw; }                  // [rad]
+  std::span<const Vec2> velocities() const { return bodies_.vel; }              // [m/s]
+  std::span<const double> angular_velocities() const { return bodies_.omega; }  // [rad/s]
+  std::span<const Vec2> forces() const { return bodies_.force; }      // total force of the last evaluation [N]
+  std::span<const double> torques() const { return bodies_.torque; }  // [N m]
   void set_velocity(int i, const Vec2& v, double omega);
   void set_external_load(int i, const Vec2& force, double torque);
 
   // --- cold data ---
-  BodyId id(int i) const { return id_[i]; }
+  BodyId id(int i) const { return bodies_.id[i]; }
   int index_of(BodyId id) const;  // -1 if absent
-  const geometry::ConvexPolygon& shape(int i) const { return *shape_[i]; }
-  double thickness(int i) const { return thickness_[i]; }  // [m]
-  double draft(int i) const { return draft_[i]; }          // floating draft h rho_ice / rho_w, at most h [m]
-  double mass(int i) const { return mass_[i]; }            // [kg] (of the prism, also for walls)
-  double inertia(int i) const { return inertia_[i]; }      // [kg m^2]
-  Motion motion(int i) const { return motion_[i]; }
+  const geometry::ConvexPolygon& shape(int i) const { return *bodies_.shape[i]; }
+  double thickness(int i) const { return bodies_.thickness[i]; }  // [m]
+  double draft(int i) const { return bodies_.draft[i]; }          // floating draft h rho_ice / rho_w, at most h [m]
+  double mass(int i) const { return bodies_.mass[i]; }            // [kg] (of the prism, also for walls)
+  double inertia(int i) const { return bodies_.inertia[i]; }      // [kg m^2]
+  Motion motion(int i) const { return bodies_.motion[i]; }
   // World-frame vertices of body i as of the last step (counter-clockwise).
   std::span<const Vec2> world_vertices(int i) const {
-    return {world_xy_.data() + vert_begin_[i], static_cast<std::size_t>(vert_off_[i + 1] - vert_off_[i])};
+    return {world_xy_.data() + vert_begin_[i], static_cast<std::size_t>(bodies_.vert_off[i + 1] - bodies_.vert_off[i])};
   }
 
   // --- bonds between elements (frozen ice): none until set ---
@@ -204,7 +205,7 @@ class World {
   // equivalent radius of a pair.
   const StepReport& report() const;
   static constexpr double kOverlapLimit = 0.5;
-  double dynamic_mass() const { return dynamic_mass_; }  // [kg], summed in body order
+  double dynamic_mass() const { return bodies_.dynamic_mass; }  // [kg], summed in body order
 
   // Duration of the shortest Hertz impact between the bodies present (smallest dynamic mass and radius) at
   // `speed` [m/s]; with the foundation force model also of the stiffest flat-face contact (a floe's longest edge
@@ -237,14 +238,14 @@ class World {
     f(&WorldState::time, w.time_);
     f(&WorldState::steps, w.steps_);
     f(&WorldState::forces_ready, w.forces_ready_);
-    f(&WorldState::position, w.pos_);
-    f(&WorldState::yaw, w.yaw_);
-    f(&WorldState::velocity, w.vel_);
-    f(&WorldState::omega, w.omega_);
-    f(&WorldState::force, w.force_);
-    f(&WorldState::torque, w.torque_);
-    f(&WorldState::external_force, w.ext_force_);
-    f(&WorldState::external_torque, w.ext_torque_);
+    f(&WorldState::position, w.bodies_.pos);
+    f(&WorldState::yaw, w.bodies_.yaw);
+    f(&WorldState::velocity, w.bodies_.vel);
+    f(&WorldState::omega, w.bodies_.omega);
+    f(&WorldState::force, w.bodies_.force);
+    f(&WorldState::torque, w.bodies_.torque);
+    f(&WorldState::external_force, w.bodies_.ext_force);
+    f(&WorldState::external_torque, w.bodies_.ext_torque);
     f(&WorldState::bonds_failed_last, w.bonds_failed_last_);
   }
   // compute_forces; with `shapes` (step()) its first pass also moves the world-frame shapes (the slots sorted).
@@ -282,29 +283,13 @@ class World {
   std::uint64_t steps_ = 0;
   bool forces_ready_ = false;
 
-  // hot state
-  std::vector<Vec2> pos_, vel_, force_, ext_force_;
-  std::vector<double> yaw_, omega_, torque_, ext_torque_, inv_mass_, inv_inertia_;
-  std::vector<Vec2> vel_eval_;      // velocity at which velocity-dependent forces are evaluated [m/s]
-  std::vector<double> omega_eval_;  // [rad/s]
-  // cold data
-  std::vector<BodyId> id_;
-  std::unordered_map<BodyId, int> index_;
-  std::vector<std::shared_ptr<const geometry::ConvexPolygon>> shape_;
-  std::vector<double> thickness_, mass_, inertia_, radius_, plan_area_;
-  std::vector<double> draft_, side_area_, equivalent_radius_;  // [m], submerged side area [m^2], sqrt(A/pi) [m]
-  std::vector<int> quad_off_{0};           // body i's bottom/top quadrature points: quad_off_[i] .. quad_off_[i+1]-1
-  std::vector<double> quad_lx_, quad_ly_;  // body-frame lever of each point from the centroid [m]
-  std::vector<double> quad_weight_;        // area carried [m^2]
+  // The bodies' arrays (dynamics/bodies.h).
+  Bodies bodies_;
   // The drift forcing's loads, their linear model and the final kick's damped inverses (dynamics/drift_model.h).
   DriftModel drift_;
-  std::vector<Motion> motion_;
-  std::vector<std::uint8_t> is_dynamic_;
   // world-frame shapes, refreshed after each move
-  std::vector<int> vert_off_{0};  // prefix sums of the vertex counts, in body order (vertex count = difference)
-  std::vector<int> vert_begin_;   // where body i's world-frame vertices start in world_xy_ (slot order, below)
+  std::vector<int> vert_begin_;  // where body i's world-frame vertices start in world_xy_ (slot order, below)
   std::vector<Vec2> world_xy_;
-  std::vector<Vec2> local_xy_;  // body-frame vertices, in body order (vert_off_): read without a pointer chase
   std::vector<Vec2> rotation_;  // (cos yaw, sin yaw) of the world-frame shape
 
   // The contact stage works on "slots": the bodies sorted by position (dynamics/slots.h), so that bodies close in
@@ -312,13 +297,10 @@ class World {
   // handle; slots are private to the step. World-frame vertices and boxes are stored in slot order. The order's
   // cell is 4 x the mean equivalent radius of the dynamic bodies.
   SlotOrder order_;
-  double radius_sum_ = 0.0;  // of the dynamic bodies [m]
-  int dynamic_count_ = 0;
   std::vector<SlotStatic> slot_static_;
   std::vector<SlotState> slot_state_;
   std::vector<std::uint8_t> slot_dynamic_;
   std::vector<geometry::Aabb> boxes_;  // world-frame bounding boxes, by slot
-  std::vector<double> reach_;          // circumradius about the centroid, by body [m]
   // Per neighbour-list entry: where the pair's history was stored is kept by the lists; history_gen_ is the
   // contact cache's generation the last contact sum stored under (after a build or a restore of the cache the
   // histories are looked up by key, for one evaluation).
@@ -329,7 +311,6 @@ class World {
   mutable std::vector<ContactRecord> contacts_;  // listed on demand (contacts())
   mutable bool contacts_ready_ = true;
   std::size_t contact_count_ = 0;
-  double dynamic_mass_ = 0.0;  // [kg]
   mutable StepReport report_;  // see report()
   mutable bool motion_ready_ = false;
   mutable std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
@@ -370,7 +351,6 @@ class World {
   // The drift forcing stage (dynamics/forcing_stage.h) and what it reads of the bodies.
   DriftForcing drift_forcing_;
   DriftBodies drift_bodies() const;
-  std::size_t max_quad_points_ = 0, max_vertices_ = 0;
   StepProfile profile_;
   std::uint64_t narrow_phase_failures_ = 0;
 };
