@@ -17,6 +17,7 @@ PACKAGES=(
   g++ cmake ninja-build pkg-config git clang-format
   libeigen3-dev libccd-dev libvtk9-dev libhdf5-dev libyaml-cpp-dev libboost-dev
   libgtest-dev libbenchmark-dev
+  nlohmann-json3-dev  # the study drivers' JSON (tests/bench)
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
   openfoam  # v1912: the of_cases (OpenFOAM flows that drive the ice; tests/validation/test_strait_openfoam.cpp)
   openfoam-examples  # its tutorials: users' kinds of case (of_cases/tutorials, test_openfoam_tutorials.cpp)

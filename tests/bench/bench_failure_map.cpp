@@ -60,7 +60,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
@@ -78,6 +77,7 @@
 #include "contact_methods.h"
 #include "geometry/polyhedron.h"
 #include "failure_map_cases.h"
+#include "json_out.h"
 #include "test_support.h"
 
 using namespace polyfloe;
@@ -202,22 +202,6 @@ void classify(int m, const Pair& p, int index, const Result& r, Stats& s) {
   s.depth_error.push_back(std::abs(r.depth - ref) / ref);
 }
 
-std::string json_string(const std::string& s) {
-  std::string o = "\"";
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') o += '\\';
-    o += ch;
-  }
-  return o + "\"";
-}
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 void print_polygon(const char* name, const std::vector<Vec2>& v) {
   std::printf("    %s = {", name);
   for (std::size_t i = 0; i < v.size(); ++i) std::printf("%s{%.17g, %.17g}", i ? ", " : "", v[i].x(), v[i].y());
@@ -272,18 +256,20 @@ int main(int argc, char** argv) {
   std::printf("Floes at the floating level: z in [%.4f h, %.4f h] (rho_ice / rho_water = %.0f / %.0f)\n\n",
               floating(1.0).lo, floating(1.0).hi, kRhoIce, kRhoWater);
 
-  std::string json = "{\n  \"settings\": {\"random_pairs\": " + std::to_string(n_random) +
-                     ", \"degenerate_pairs\": " + std::to_string(n_degenerate) +
-                     ", \"timed_passes\": " + std::to_string(passes) + ", \"seed_offset\": " + std::to_string(seed) +
-                     ", \"draft_fraction\": " + num(-floating(1.0).lo) +
-                     ", \"wrong_normal_degrees\": 1, \"tie_tolerance\": " + num(kTieTol) + "},\n  \"methods\": [";
+  // (a value without a number, a NaN or an infinity, is written as null)
+  tsupport::Json json = {{"settings",
+                          {{"random_pairs", n_random},
+                           {"degenerate_pairs", n_degenerate},
+                           {"timed_passes", passes},
+                           {"seed_offset", seed},
+                           {"draft_fraction", -floating(1.0).lo},
+                           {"wrong_normal_degrees", 1},
+                           {"tie_tolerance", kTieTol}}},
+                         {"methods", tsupport::Json::array()},
+                         {"cases", tsupport::Json::array()},
+                         {"results", tsupport::Json::array()}};
   for (int m = 0; m < kMethods; ++m)
-    json += std::string(m ? ", " : "") + "{\"name\": " + json_string(kMethodName[m]) +
-            ", \"label\": " + json_string(kMethodLabel[m]) + ", \"planar\": " + (is_planar(m) ? "true" : "false") + "}";
-  json += "],\n  \"cases\": [";
-  bool first_case = true;
-  std::string json_results;
-  bool first_result = true;
+    json["methods"].push_back({{"name", kMethodName[m]}, {"label", kMethodLabel[m]}, {"planar", is_planar(m)}});
   int bugs = 0;
 
   for (const Case& c : cases) {
@@ -308,13 +294,14 @@ int main(int argc, char** argv) {
     else
       std::printf("  brute-force MTD of the touching pairs: |MTD| / L <= %.2g (zero by construction)\n",
                   touch_residual);
-    json += std::string(first_case ? "\n" : ",\n") + "    {\"name\": " + json_string(c.name) +
-            ", \"description\": " + json_string(c.description) + ", \"pairs\": " + std::to_string(c.pairs.size()) +
-            ", \"overlapping\": " + std::to_string(overlapping) +
-            ", \"ref_mtd_min\": " + num(c.pairs.front().touching ? 0.0 : ref_lo) +
-            ", \"ref_mtd_max\": " + num(c.pairs.front().touching ? 0.0 : ref_hi) +
-            ", \"ref_vertical\": " + std::to_string(vertical) + ", \"touch_residual\": " + num(touch_residual) + "}";
-    first_case = false;
+    json["cases"].push_back({{"name", c.name},
+                             {"description", c.description},
+                             {"pairs", c.pairs.size()},
+                             {"overlapping", overlapping},
+                             {"ref_mtd_min", c.pairs.front().touching ? 0.0 : ref_lo},
+                             {"ref_mtd_max", c.pairs.front().touching ? 0.0 : ref_hi},
+                             {"ref_vertical", vertical},
+                             {"touch_residual", touch_residual}});
 
     std::printf("  %-9s %7s %7s %7s %7s %7s %7s %7s %7s %10s %10s %10s %9s %8s\n", "method", "contact", "failed",
                 "missed", "false", "nonfin", "wrongN", "(ties)", "vert", "dErr p50", "dErr p90", "dErr max", "ns/pair",
@@ -372,36 +359,35 @@ int main(int argc, char** argv) {
         std::printf("    BUG %s: %d malformed contacts\n", kMethodName[m], s.malformed);
       }
 
-      std::string reasons = "{";
-      bool first_reason = true;
-      for (const auto& [reason, count] : s.reasons) {
-        reasons += std::string(first_reason ? "" : ", ") + json_string(reason) + ": " + std::to_string(count);
-        first_reason = false;
-      }
-      reasons += "}";
-      std::string passes_json = "[";
-      for (std::size_t k = 0; k < s.ns_passes.size(); ++k) passes_json += (k ? ", " : "") + num(s.ns_passes[k]);
-      passes_json += "]";
-      json_results +=
-          std::string(first_result ? "\n" : ",\n") + "    {\"case\": " + json_string(c.name) +
-          ", \"method\": " + json_string(kMethodName[m]) + ", \"pairs\": " + std::to_string(s.pairs) +
-          ", \"overlapping\": " + std::to_string(s.overlapping) + ", \"contacts\": " + std::to_string(s.contacts) +
-          ", \"failed\": " + std::to_string(s.failed) + ", \"missed\": " + std::to_string(s.missed) +
-          ", \"false_contact\": " + std::to_string(s.false_contact) +
-          ", \"false_depth_max\": " + num(s.false_depth_max) + ", \"nonfinite\": " + std::to_string(s.nonfinite) +
-          ", \"malformed\": " + std::to_string(s.malformed) + ", \"wrong_normal\": " + std::to_string(s.wrong_normal) +
-          ", \"wrong_normal_ties\": " + std::to_string(s.wrong_normal_ties) +
-          ", \"vertical\": " + std::to_string(s.vertical) + ", \"horizontal\": " + std::to_string(s.horizontal) +
-          ",\n     \"depth_error_median\": " + num(p50) + ", \"depth_error_p90\": " + num(p90) +
-          ", \"depth_error_max\": " + num(mx) + ", \"ns_per_pair\": " + num(ns) + ", \"ns_passes\": " + passes_json +
-          ", \"max_us_one_pair\": " + num(s.max_us) + ", \"slowest_pair\": " + std::to_string(s.slowest) +
-          ",\n     \"failure_reasons\": " + reasons + "}";
-      first_result = false;
+      tsupport::Json reasons = tsupport::Json::object();
+      for (const auto& [reason, count] : s.reasons) reasons[reason] = count;
+      json["results"].push_back({{"case", c.name},
+                                 {"method", kMethodName[m]},
+                                 {"pairs", s.pairs},
+                                 {"overlapping", s.overlapping},
+                                 {"contacts", s.contacts},
+                                 {"failed", s.failed},
+                                 {"missed", s.missed},
+                                 {"false_contact", s.false_contact},
+                                 {"false_depth_max", s.false_depth_max},
+                                 {"nonfinite", s.nonfinite},
+                                 {"malformed", s.malformed},
+                                 {"wrong_normal", s.wrong_normal},
+                                 {"wrong_normal_ties", s.wrong_normal_ties},
+                                 {"vertical", s.vertical},
+                                 {"horizontal", s.horizontal},
+                                 {"depth_error_median", p50},
+                                 {"depth_error_p90", p90},
+                                 {"depth_error_max", mx},
+                                 {"ns_per_pair", ns},
+                                 {"ns_passes", s.ns_passes},
+                                 {"max_us_one_pair", s.max_us},
+                                 {"slowest_pair", s.slowest},
+                                 {"failure_reasons", reasons}});
     }
     std::printf("\n");
   }
-  json += "\n  ],\n  \"results\": [" + json_results + "\n  ]\n}\n";
-  std::ofstream(out_file) << json;
+  if (!tsupport::write_json(out_file, json)) return 1;
   const double secs = std::chrono::duration<double>(Clock::now() - t_start).count();
   std::printf("%d bug(s) found (non-finite, malformed, a missed or a false contact)\n", bugs);
   std::printf("wrote %s (%.0f s)\n", out_file.c_str(), secs);

@@ -39,7 +39,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <numbers>
 #include <random>
 #include <string>
@@ -48,6 +47,7 @@
 #include "contact/narrow_phase_planar.h"
 #include "contact_methods.h"
 #include "dense_pack.h"
+#include "json_out.h"
 #include "dynamics/world.h"
 #include "forcing/analytic_fields.h"
 #include "test_support.h"
@@ -194,16 +194,6 @@ double energy_norm_error(const dynamics::World& w, const Outcome& o, const Outco
 
 using tsupport::percentile;
 
-std::string json_array(const std::vector<double>& v) {
-  std::string s = "[";
-  char buf[32];
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    std::snprintf(buf, sizeof buf, "%s%.6g", i ? ", " : "", std::isfinite(v[i]) ? v[i] : -1.0);
-    s += buf;
-  }
-  return s + "]";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -236,10 +226,12 @@ int main(int argc, char** argv) {
   const double n_ref = 2560.0, speed = 1.0;
   const ContactSetting settings[] = {{"elastic", 1.0, 0.0}, {"scenes", 0.5, 0.3}};
 
-  std::string json = "{\n  \"predicted_steps_per_contact\": 2.015";
+  // (a measurement without a value, NaN or infinite, is written as -1)
+  using tsupport::or_none;
+  tsupport::Json json = {{"predicted_steps_per_contact", 2.015}};
   if (wanted("impacts")) {
-    json += ",\n  \"steps_per_contact\": " + json_array(ns) + ",\n  \"impacts\": [\n";
-    bool first_cell = true;
+    json["steps_per_contact"] = or_none(ns);
+    json["impacts"] = tsupport::Json::array();
     std::printf("Binary impacts, %d random pairs per cell, v = %.1f m/s; n = steps per contact (dt = t_c / n)\n",
                 samples, speed);
     std::printf("%-8s %8s %6s  %14s  %12s  %12s  %12s  %12s\n", "setting", "E [Pa]", "ratio", "critical n_c",
@@ -304,24 +296,22 @@ int main(int argc, char** argv) {
           std::printf("%-8s %8.0e %6.0f  %14.2f  %12.2e  %12.2e  %12.2e  %12.2e\n", cs.name, E, r, n_c, at(p50, 5),
                       at(p90, 5), at(p50, 40), at(p90, 40));
           std::vector<double> stable_d(stable.begin(), stable.end());
-          char head[160];
-          std::snprintf(head, sizeof head,
-                        "    {\"setting\": \"%s\", \"youngs_modulus\": %.3g, \"mass_ratio\": %.3g, \"samples\": %d, "
-                        "\"critical_steps_per_contact\": %.4g,\n",
-                        cs.name, E, r, samples, std::isfinite(n_c) ? n_c : -1.0);
-          json += (first_cell ? "" : ",\n") + std::string(head) + "     \"error_p50\": " + json_array(p50) +
-                  ",\n     \"error_p90\": " + json_array(p90) +
-                  ",\n     \"energy_gain_max\": " + json_array(worst_gain) +
-                  ",\n     \"stable\": " + json_array(stable_d) + "}";
-          first_cell = false;
+          json["impacts"].push_back({{"setting", cs.name},
+                                     {"youngs_modulus", E},
+                                     {"mass_ratio", r},
+                                     {"samples", samples},
+                                     {"critical_steps_per_contact", or_none(n_c)},
+                                     {"error_p50", or_none(p50)},
+                                     {"error_p90", or_none(p90)},
+                                     {"energy_gain_max", or_none(worst_gain)},
+                                     {"stable", or_none(stable_d)}});
         }
       }
     }
-    json += "\n  ]";
   }
 
   if (wanted("packs")) {
-    json += ",\n  \"packs\": [\n";
+    json["packs"] = tsupport::Json::array();
 
     // 2. Jammed packs.
     const std::vector<double> pack_ns{1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 7, 10, 20, 40};
@@ -331,7 +321,6 @@ int main(int argc, char** argv) {
     std::printf("\nJammed packs (~2,500 floes, E = 1e9 Pa, e = 0.5, mu = 0.3), dt = t_c(1 m/s) / n, %d steps\n",
                 pack_steps);
     std::printf("%-8s %10s %12s %14s %16s\n", "eps", "overlap", "critical n_c", "guard n (start)", "guard / binary");
-    bool first_pack = true;
     for (double eps : eps_list) {
       tsupport::PackSpec ps;
       ps.eps = eps;
@@ -378,20 +367,19 @@ int main(int argc, char** argv) {
       std::printf("%-8.0e %8.1f mm %12.2f %14.2f %16.2f\n", eps, 1e3 * overlap, n_c, guard_n * kPredictedSteps,
                   guard_n);
       std::vector<double> stable_d(stable.begin(), stable.end());
-      char head[256];
-      std::snprintf(head, sizeof head,
-                    "    {\"eps\": %.3g, \"floes\": %d, \"mean_overlap\": %.4g, \"critical_steps_per_contact\": %.4g, "
-                    "\"guard_steps_per_contact\": %.4g,\n",
-                    eps, pack.floes, overlap, std::isfinite(n_c) ? n_c : -1.0, guard_n * kPredictedSteps);
-      json += (first_pack ? "" : ",\n") + std::string(head) + "     \"steps_per_contact\": " + json_array(pack_ns) +
-              ",\n     \"energy_growth\": " + json_array(growth) + ",\n     \"stable\": " + json_array(stable_d) + "}";
-      first_pack = false;
+      json["packs"].push_back({{"eps", eps},
+                               {"floes", pack.floes},
+                               {"mean_overlap", overlap},
+                               {"critical_steps_per_contact", or_none(n_c)},
+                               {"guard_steps_per_contact", guard_n * kPredictedSteps},
+                               {"steps_per_contact", or_none(pack_ns)},
+                               {"energy_growth", or_none(growth)},
+                               {"stable", or_none(stable_d)}});
     }
-    json += "\n  ]";
   }
 
   if (wanted("cost")) {
-    json += ",\n  \"step_cost\": [\n";
+    json["step_cost"] = tsupport::Json::array();
 
     // 3. Step cost per quadrature rule.
     std::printf("\nStep cost, 1,500-floe jammed pack with every drift term, one thread (median of 3 x 500 steps)\n");
@@ -401,7 +389,6 @@ int main(int argc, char** argv) {
                                                                  {"degree2", forcing::Quadrature::degree2},
                                                                  {"degree4", forcing::Quadrature::degree4},
                                                                  {"degree5", forcing::Quadrature::degree5}};
-    bool first_rule = true;
     for (const auto& [name, rule] : rules) {
       std::vector<double> us;
       for (int rep = 0; rep < 3; ++rep) {
@@ -421,16 +408,10 @@ int main(int argc, char** argv) {
       }
       const double med = percentile(us, 0.5);
       std::printf("  %-9s %.3f us per floe-step\n", name, med);
-      char row[128];
-      std::snprintf(row, sizeof row, "%s    {\"quadrature\": \"%s\", \"us_per_floe_step\": %.4g}",
-                    first_rule ? "" : ",\n", name, med);
-      json += row;
-      first_rule = false;
+      json["step_cost"].push_back({{"quadrature", name}, {"us_per_floe_step", med}});
     }
-    json += "\n  ]";
   }
-  json += "\n}\n";
-  std::ofstream(out_file) << json;
+  if (!tsupport::write_json(out_file, json)) return 1;
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   std::printf("\nwrote %s (%.0f s)\n", out_file.c_str(), secs);
   return 0;
