@@ -11,29 +11,13 @@ against the CPU time per floe. Medians are used when the benchmark was repeated.
     /usr/bin/python3 postprocess/plot_drift_quadrature.py docs/data/drift_quadrature.json \
         docs/figures/drift_quadrature.png
 """
-import json
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def read_rows(src):
-    """{(field, rule): (ns_per_floe, torque_error, force_error, points_per_floe)} of BM_SkinDragQuadrature (medians
-    when repeated); raises OSError or ValueError (json.JSONDecodeError) when the file cannot be read."""
-    with open(src) as f:
-        data = json.load(f)
-    rows = {}
-    for b in data.get("benchmarks", []):
-        if not b["name"].startswith("BM_SkinDragQuadrature") or "error_occurred" in b:
-            continue
-        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
-            continue
-        field, rule = b["label"].split()
-        rows[(field, rule)] = (b["ns_per_floe"], b["torque_error"], b["force_error"], b["points_per_floe"])
-    return rows
+from polyfloe_post.bench_json import quadrature_rows  # noqa: E402
 
 
 def main(argv):
@@ -42,7 +26,7 @@ def main(argv):
         return 2
     src, out = argv[1], argv[2]
     try:
-        rows = read_rows(src)
+        rows = quadrature_rows(src)
     except (OSError, ValueError) as e:
         sys.stderr.write(f"plot_drift_quadrature.py: cannot read {src}: {e}\n")
         return 1

@@ -9,34 +9,15 @@ bottom-quadrature rule, the ocean-drag force and torque error on floes in the st
 The default (grid = the mesh's finest cell, 5 m on the CI mesh; degree2) is ringed.
 """
 import argparse
-import json
-import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from polyfloe_post.bench_json import field_sampling_rows  # noqa: E402
 
 RULES = ["centroid", "degree1", "degree2", "degree4"]
 MARKERS = {"centroid": "o", "degree1": "s", "degree2": "D", "degree4": "^"}
-
-
-def load(path):
-    try:
-        with open(path) as f:
-            data = json.load(f)
-    except (OSError, json.JSONDecodeError) as e:
-        sys.exit(f"plot_field_sampling: cannot read {path}: {e}")
-    rows = {}
-    for b in data.get("benchmarks", []):
-        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
-            continue
-        label = b.get("label", "")
-        source, rule = label.rsplit(" ", 1)
-        rows[(source, rule)] = (b["ns_per_floe"], b["force_error"], b["torque_error"])
-    if not rows:
-        sys.exit(f"plot_field_sampling: no BM_FieldSampling results in {path}")
-    return rows
 
 
 def main():
@@ -45,7 +26,7 @@ def main():
     ap.add_argument("output")
     ap.add_argument("--default", default="grid 5 m degree2", help="the default's label")
     a = ap.parse_args()
-    rows = load(a.data)
+    rows = field_sampling_rows(a.data)
     sources = sorted({s for s, _ in rows}, key=lambda s: (s == "direct", -float(s.split()[1]) if s != "direct" else 0))
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
     cmap = plt.get_cmap("viridis")

@@ -15,21 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
-
-
-def frame_polygons(f, k):
-    off = f["/floes/polygon_offsets"][:]
-    xy = f["/floes/polygon_xy"][:]
-    pos = f["/state/position"][k]
-    q = f["/state/orientation"][k]
-    yaw = 2.0 * np.arctan2(q[:, 3], q[:, 0])
-    polys = []
-    for i in range(len(off) - 1):
-        c, s = np.cos(yaw[i]), np.sin(yaw[i])
-        local = xy[off[i]:off[i + 1]]
-        world = np.column_stack([c * local[:, 0] - s * local[:, 1], s * local[:, 0] + c * local[:, 1]])
-        polys.append(world + pos[i, :2])
-    return polys
+from polyfloe_post.frames import frame_polygons  # noqa: E402
 
 
 def main():

@@ -13,7 +13,6 @@ white polygons with black edges, walls dark grey. Reads the field file (docs/sce
 results.h5 (docs/user-guide.md).
 """
 import argparse
-import pathlib
 import sys
 
 import h5py
@@ -24,8 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from plot_frames import frame_polygons  # noqa: E402
+from polyfloe_post.frames import frame_polygons  # noqa: E402
 
 
 def open_h5(path, what):

@@ -33,8 +33,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from plot_drift_quadrature import read_rows  # noqa: E402  (same folder)
-from plot_field_sampling import load as load_field_rows  # noqa: E402  (same folder)
+from polyfloe_post.bench_json import field_sampling_rows, quadrature_rows  # noqa: E402
 
 GUARD_FLOOR = 10.0  # dynamics::kMinStepsPerContact (dem/dynamics/world.h): the run guard floor
 DEFAULT_STEPS = 40.0
@@ -56,7 +55,7 @@ def load(paths):
 def quadrature_errors(path):
     """{rule: torque error} for the sheared current."""
     try:
-        rows = read_rows(path)
+        rows = quadrature_rows(path)
     except (OSError, ValueError) as e:
         sys.exit(f"plot_stability.py: cannot read {path}: {e}")
     return {rule: r[1] for (field, rule), r in rows.items() if field == "shear"}
@@ -202,7 +201,7 @@ def main():
     ap.add_argument("--out", default="docs/figures", help="folder for the PNG files")
     a = ap.parse_args()
     d = load(a.json)
-    field = load_field_rows(a.field) if a.field else None
+    field = field_sampling_rows(a.field) if a.field else None
     os.makedirs(a.out, exist_ok=True)
     stability_map(d, a.out)
     speed_accuracy(d, quadrature_errors(a.quadrature), field, a.out)

@@ -27,8 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_frames import frame_polygons  # noqa: E402
+from polyfloe_post.frames import frame_polygons  # noqa: E402
 
 
 def load(run):

@@ -6,9 +6,7 @@ floe), the walls, and beside it the ice velocity grid where the ice fraction is 
 Writes OUT/channel.png (and .pvsm, and with --animation the frames and a movie); see polyfloe_pv.py.
 """
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import paraview.simple as pv  # noqa: E402
 import polyfloe_pv as P  # noqa: E402
 

@@ -7,10 +7,7 @@ clamped to 0.3 ... 3 times), coloured by the force on a log scale; the floes gre
 Contact forces span orders of magnitude (10^3 ... 10^7 N in the channel scene): arrows in proportion to the force
 would show the strongest few. Writes OUT/contacts.png (and .pvsm; --animation: frames and a movie).
 """
-import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import paraview.simple as pv  # noqa: E402
 import polyfloe_pv as P  # noqa: E402
 

@@ -7,10 +7,7 @@ Needs a run with bonds (bonds.pvd: one line per bonded face, `intact` 0 once it 
 OUT/cracks.png (and .pvsm; --animation: frames and a movie).
 """
 import math
-import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import paraview.simple as pv  # noqa: E402
 import polyfloe_pv as P  # noqa: E402
 

@@ -10,9 +10,7 @@ the last snapshot at or before the time); a scene's `time_offset` or `offset` is
 OUT/ice_over_field.png (and .pvsm; --animation: frames and a movie).
 """
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import paraview.simple as pv  # noqa: E402
 import polyfloe_pv as P  # noqa: E402
 
