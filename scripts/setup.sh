@@ -17,6 +17,7 @@ PACKAGES=(
   g++ cmake ninja-build pkg-config git clang-format
   libeigen3-dev libccd-dev libvtk9-dev libhdf5-dev libyaml-cpp-dev libboost-dev
   libgtest-dev libbenchmark-dev
+  libcli11-dev  # the command line (dem/app)
   nlohmann-json3-dev  # the study drivers' JSON (tests/bench)
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
   openfoam  # v1912: the of_cases (OpenFOAM flows that drive the ice; tests/validation/test_strait_openfoam.cpp)

@@ -21,6 +21,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "dynamics/parallel.h"
 #include "forcing/field.h"
 #include "geometry/polygon.h"
@@ -78,51 +80,56 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The command line on CLI11: the subcommands and their options; a value it cannot take is a UsageError that names
+// the option and what it takes.
 Args parse_args(int argc, char** argv) {
   Args a;
-  std::vector<std::string> v(argv + 1, argv + argc);
-  if (v.empty()) throw UsageError("no command given");
-  a.command = v[0];
+  if (argc < 2) throw UsageError("no command given");
+  a.command = argv[1];
   if (a.command != "run" && a.command != "check") throw UsageError("unknown command '" + a.command + "'");
-  auto value = [&](std::size_t& i, const std::string& opt) -> std::string {
-    if (i + 1 >= v.size()) throw UsageError("option " + opt + " needs a value");
-    return v[++i];
+  auto not_empty = [](const char* what) {
+    return CLI::Validator(
+        [what](std::string& v) { return v.empty() ? std::string("needs ") + what + ", got ''" : std::string(); }, "");
   };
-  for (std::size_t i = 1; i < v.size(); ++i) {
-    const std::string& s = v[i];
-    if (s == "-o" || s == "--output") {
-      if (a.command != "run") throw UsageError("option " + s + " applies to 'run' only");
-      a.output = value(i, s);
-      if (a.output.empty()) throw UsageError("option " + s + " needs a folder name, got ''");
-    } else if (s == "--set") {
-      const std::string kv = value(i, s);
-      if (kv.find('=') == std::string::npos || kv.front() == '=')
-        throw UsageError("--set expects KEY.PATH=VALUE, got '" + kv + "'");
-      a.overrides.push_back(kv);
-    } else if (s.rfind("--set=", 0) == 0) {
-      a.overrides.push_back(s.substr(6));
-    } else if (s == "--threads") {
-      const std::string n = value(i, s);
-      char* end = nullptr;
-      const long t = std::strtol(n.c_str(), &end, 10);
-      if (end == n.c_str() || *end != '\0' || t < 1 || t > 1024)
-        throw UsageError("--threads expects an integer in [1, 1024], got '" + n + "'");
-      a.threads = static_cast<int>(t);
-    } else if (s == "--profile") {
-      a.profile = true;
-    } else if (s == "--restart") {
-      if (a.command != "run") throw UsageError("option " + s + " applies to 'run' only");
-      a.restart = value(i, s);
-      if (a.restart.empty()) throw UsageError("--restart expects a checkpoint file or a run's output folder");
-    } else if (!s.empty() && s[0] == '-') {
-      throw UsageError("unknown option '" + s + "'");
-    } else if (a.scene.empty()) {
-      a.scene = s;
-    } else {
-      throw UsageError("unexpected argument '" + s + "' (one scene file per run)");
-    }
+  const CLI::Validator key_value(
+      [](std::string& v) {
+        return v.find('=') == std::string::npos || v.front() == '=' ? "expects KEY.PATH=VALUE, got '" + v + "'"
+                                                                    : std::string();
+      },
+      "");
+  CLI::App app("PolyFloe", "polyfloe");
+  app.set_help_flag();  // --help is answered before the parse (kUsage)
+  app.require_subcommand(1, 1);
+  CLI::App* cmd = app.add_subcommand(a.command);
+  cmd->set_help_flag();
+  cmd->add_option("scene", a.scene, "the scene file")->required();
+  cmd->add_option("--set", a.overrides, "a scene value")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(key_value);
+  const CLI::Validator thread_count(
+      [](std::string& v) {
+        char* end = nullptr;
+        const long t = std::strtol(v.c_str(), &end, 10);
+        return end == v.c_str() || *end != '\0' || t < 1 || t > 1024
+                   ? "expects an integer in [1, 1024], got '" + v + "'"
+                   : std::string();
+      },
+      "");
+  cmd->add_option("--threads", a.threads, "worker threads")->check(thread_count);
+  cmd->add_flag("--profile", a.profile, "print where the step time went");
+  std::filesystem::path ignored;
+  const CLI::Validator run_only([](std::string&) { return std::string("applies to 'run' only"); }, "");
+  const bool run = a.command == "run";
+  cmd->add_option("-o,--output", run ? a.output : ignored, "output folder")
+      ->check(run ? not_empty("a folder name") : run_only);
+  cmd->add_option("--restart", run ? a.restart : ignored, "a checkpoint or a run's folder")
+      ->check(run ? not_empty("a checkpoint file or a run's output folder") : run_only);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(e.what());
   }
-  if (a.scene.empty()) throw UsageError("no scene file given");
   return a;
 }
 
@@ -343,8 +350,10 @@ int exec_field_tool(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "field") return exec_field_tool(argc, argv);
-  if (argc >= 2 &&
-      (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" || std::string(argv[1]) == "help")) {
+  // --help anywhere (polyfloe run --help) or 'help' as the command: the usage.
+  if (argc >= 2 && (std::string(argv[1]) == "help" || std::any_of(argv + 1, argv + argc, [](const char* x) {
+                      return std::string(x) == "--help" || std::string(x) == "-h";
+                    }))) {
     std::cout << kUsage;
     return run::kExitOk;
   }

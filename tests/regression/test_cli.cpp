@@ -337,7 +337,7 @@ TEST(Cli, RerunRemovesOnlyWhatThePreviousRunListed) {
 TEST(Cli, EmptyOutputNameIsRefused) {
   const Result r = run_polyfloe("run " + kScene + " -o ''");
   EXPECT_EQ(r.code, 2) << r.output;
-  EXPECT_NE(r.output.find("option -o needs a folder name"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--output: needs a folder name"), std::string::npos) << r.output;
 }
 
 // A scene file named "...yaml" without a name: the default name is "scene", never ".." (which made the default
