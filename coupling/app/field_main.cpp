@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "field_args.h"
 #include "field_vtk.h"
 #include "forcing/gridded_field.h"
 #include "formats/field_file.h"
@@ -28,6 +29,8 @@ namespace {
 
 using namespace polyfloe;
 namespace fs = std::filesystem;
+using coupling::app::Args;
+using coupling::app::UsageError;
 
 const char* kUsage = R"(polyfloe field: ocean currents from OpenFOAM for PolyFloe scenes.
 
@@ -71,204 +74,6 @@ The file layout is in docs/scene-reference.md ("Field files"); a scene uses it w
   forcing: {ocean: {field: {type: file, path: FILE, outside: clamp}}}
 Exit codes: 0 done, 2 bad input (arguments, case or file), 1 other failure.
 )";
-
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-std::vector<double> numbers(const std::string& opt, const std::string& text) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double x = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(x))
-      throw UsageError(opt + ": expected numbers separated by commas, got '" + text + "'");
-    v.push_back(x);
-  }
-  if (v.empty()) throw UsageError(opt + ": expected numbers separated by commas, got '" + text + "'");
-  return v;
-}
-
-struct Args {
-  std::string command;
-  std::vector<std::string> positional;
-  fs::path output;
-  coupling::GridSpec grid;
-  coupling::TimeSelection times;
-  coupling::CaseTransform transform;
-  bool vtk = true;
-  long points = 20000;
-  unsigned seed = 1;
-};
-
-// --times W: auto, all, latest, A:B (either end open) or a list of times [s].
-coupling::TimeSelection parse_times(const std::string& o, const std::string& w) {
-  using K = coupling::TimeSelection::Kind;
-  coupling::TimeSelection t;
-  if (w == "auto") {
-    t.kind = K::automatic;
-  } else if (w == "all") {
-    t.kind = K::all;
-  } else if (w == "latest") {
-    t.kind = K::latest;
-  } else if (const std::size_t colon = w.find(':'); colon != std::string::npos) {  // A:B, either end open
-    t.kind = K::range;
-    const std::string lo = w.substr(0, colon), hi = w.substr(colon + 1);
-    t.times = {lo.empty() ? -std::numeric_limits<double>::infinity() : numbers(o, lo).at(0),
-               hi.empty() ? std::numeric_limits<double>::infinity() : numbers(o, hi).at(0)};
-    if (!(t.times[1] >= t.times[0]) || hi.find(',') != std::string::npos)
-      throw UsageError("--times: a range is A:B with A <= B [s] (either end may be left out), got '" + w + "'");
-  } else {
-    t.kind = K::listed;
-    t.times = numbers(o, w);
-  }
-  return t;
-}
-
-// The grid's options (--cell, --bounds, --z, --max-nodes, --surface) into g; false for any other option.
-bool grid_option(const std::string& o, const std::function<std::string()>& value, coupling::GridSpec& g) {
-  if (o == "--cell") {
-    const std::string w = value();
-    if (w == "auto") {
-      g.cell = 0.0;
-      return true;
-    }
-    const std::vector<double> c = numbers(o, w);
-    if (c.size() != 1 || !(c[0] > 0.0)) throw UsageError("--cell: expected one spacing > 0 m");
-    g.cell = c[0];
-  } else if (o == "--bounds") {
-    const std::vector<double> b = numbers(o, value());
-    if (b.size() != 4 || !(b[2] > b[0]) || !(b[3] > b[1]))
-      throw UsageError("--bounds: expected X0,Y0,X1,Y1 [m] with X1 > X0 and Y1 > Y0");
-    g.bounds = Eigen::Vector4d(b[0], b[1], b[2], b[3]);
-  } else if (o == "--z") {
-    g.z = numbers(o, value());
-  } else if (o == "--max-nodes") {
-    const std::vector<double> n = numbers(o, value());
-    if (n.size() != 1 || !(n[0] >= 1.0) || n[0] > 1e10) throw UsageError("--max-nodes: expected a count in [1, 1e10]");
-    g.max_nodes = n[0];
-  } else if (o == "--surface") {
-    const std::vector<double> z = numbers(o, value());
-    if (z.size() != 1) throw UsageError("--surface: expected one height [m]");
-    g.surface = z[0];
-  } else {
-    return false;
-  }
-  return true;
-}
-
-// The case's transform (--scale, --rotate, --translate, --velocity-scale) into t; false for any other option.
-bool transform_option(const std::string& o, const std::function<std::string()>& value, coupling::CaseTransform& t) {
-  if (o == "--scale") {
-    const std::vector<double> k = numbers(o, value());
-    if ((k.size() != 1 && k.size() != 3) ||
-        std::any_of(k.begin(), k.end(), [](double x) { return !(x > 0.0) || x > 1e9; }))
-      throw UsageError("--scale: expected one factor S or three SX,SY,SZ, each in (0, 1e9]");
-    t.scale = k.size() == 1 ? Eigen::Vector3d::Constant(k[0]) : Eigen::Vector3d(k[0], k[1], k[2]);
-  } else if (o == "--rotate") {
-    const std::vector<double> d = numbers(o, value());
-    if (d.size() != 1 || std::abs(d[0]) > 360.0)
-      throw UsageError("--rotate: expected one angle in [-360, 360] degrees");
-    t.rotate = d[0];
-  } else if (o == "--translate") {
-    const std::vector<double> d = numbers(o, value());
-    if (d.size() != 3 || std::any_of(d.begin(), d.end(), [](double x) { return std::abs(x) > 1e9; }))
-      throw UsageError("--translate: expected X,Y,Z [m], each within 1e9 m");
-    t.translate = Eigen::Vector3d(d[0], d[1], d[2]);
-  } else if (o == "--velocity-scale") {
-    const std::vector<double> k = numbers(o, value());
-    if (k.size() != 1 || !(k[0] > 0.0) || k[0] > 1e6)
-      throw UsageError("--velocity-scale: expected one factor in (0, 1e6]");
-    t.velocity_scale = k[0];
-  } else {
-    return false;
-  }
-  return true;
-}
-
-// The arguments a command takes, and import's output file, checked before any (long) work; the case given as its
-// folder.
-void check_arguments(Args& a) {
-  const std::size_t want = a.command == "compare" ? 2 : 1;
-  if (a.positional.size() != want)
-    throw UsageError(a.command + " takes " +
-                     (want == 2             ? "CASE FILE"
-                      : a.command == "info" ? "FILE"
-                                            : "CASE") +
-                     ", got " + std::to_string(a.positional.size()) + " argument(s)");
-  if (a.command == "import" && a.output.empty()) throw UsageError("import needs -o FILE");
-  if (a.command == "import") {
-    // Checked before the (long) import: the file is HDF5 (.h5), its .pvd and .vtr frames go beside it.
-    const std::string ext = a.output.extension().string();
-    if (ext != ".h5" && ext != ".hdf5")
-      throw UsageError("-o " + a.output.string() +
-                       ": a field file is HDF5, named FILE.h5 (its ParaView series "
-                       "FILE.pvd and FILE/ go beside it), got the extension '" +
-                       ext + "'");
-    std::error_code ec;
-    const fs::path parent = fs::absolute(a.output, ec).parent_path();
-    if (!fs::is_directory(parent, ec))
-      throw UsageError("-o " + a.output.string() + ": the folder " + parent.string() + " does not exist");
-    if (fs::is_directory(a.output, ec)) throw UsageError("-o " + a.output.string() + ": a folder, not a file name");
-  }
-  // The case may be given as its folder, or as a file in it that names it for ParaView (CASE/case.foam, any
-  // *.foam) or its system/controlDict.
-  if (a.command != "info" && !a.positional.empty()) {
-    fs::path c = a.positional[0];
-    std::error_code ec;
-    if (c.extension() == ".foam" && !fs::is_directory(c, ec))
-      c = c.parent_path();
-    else if (c.filename() == "controlDict" && c.parent_path().filename() == "system")
-      c = c.parent_path().parent_path();
-    a.positional[0] = c.empty() ? "." : c.string();
-  }
-}
-
-Args parse(int argc, char** argv) {
-  Args a;
-  std::vector<std::string> v(argv + 1, argv + argc);
-  if (v.empty()) throw UsageError("no command given");
-  a.command = v[0];
-  if (a.command != "import" && a.command != "info" && a.command != "compare")
-    throw UsageError("unknown command '" + a.command + "' (import, info, compare)");
-  for (std::size_t i = 1; i < v.size(); ++i) {
-    const std::string& o = v[i];
-    const std::function<std::string()> value = [&]() -> std::string {
-      if (i + 1 >= v.size()) throw UsageError(o + " needs a value");
-      return v[++i];
-    };
-    if (grid_option(o, value, a.grid) || transform_option(o, value, a.transform)) continue;
-    if (o == "-o" || o == "--output") {
-      a.output = value();
-    } else if (o == "--times") {
-      a.times = parse_times(o, value());
-    } else if (o == "--no-vtk") {
-      a.vtk = false;
-    } else if (o == "--points") {
-      const std::vector<double> n = numbers(o, value());
-      if (n.size() != 1 || !(n[0] >= 1.0) || n[0] > 1e8 || n[0] != std::floor(n[0]))
-        throw UsageError("--points: expected a whole number in [1, 1e8]");
-      a.points = static_cast<long>(n[0]);
-    } else if (o == "--seed") {
-      const std::vector<double> n = numbers(o, value());
-      if (n.size() != 1 || n[0] < 0 || n[0] > 4e9 || n[0] != std::floor(n[0]))
-        throw UsageError("--seed: expected a whole number in [0, 4e9]");
-      a.seed = static_cast<unsigned>(n[0]);
-    } else if (o == "-h" || o == "--help") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (!o.empty() && o[0] == '-') {
-      throw UsageError("unknown option '" + o + "'");
-    } else {
-      a.positional.push_back(o);
-    }
-  }
-  check_arguments(a);
-  return a;
-}
 
 double wet_fraction(const forcing::GridData& g) {
   std::size_t wet = 0;
@@ -470,13 +275,15 @@ int compare(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+  // --help anywhere (polyfloe field import --help): the usage.
+  if (std::any_of(argv + 1, argv + argc,
+                  [](const char* x) { return std::string(x) == "--help" || std::string(x) == "-h"; })) {
     std::cout << kUsage;
     return 0;
   }
   Args a;
   try {
-    a = parse(argc, argv);
+    a = coupling::app::parse(argc, argv);
   } catch (const UsageError& e) {
     std::cerr << "polyfloe field: " << e.what() << "\n\n" << kUsage;
     return 2;
