@@ -123,9 +123,9 @@ class SettingsWriter {
     if (x) block(key, [&](SettingsWriter& w) { fn(w, *x); });
   }
   template <class T, class R>
-  void custom(const char* key, T& x, const char*, R,
-              void (*write)(std::ostream&, const std::string&, const char*, const T&)) {
-    write(o_, indent_, key, x);
+  void custom(const char* key, T& x, const char* comment, R,
+              void (*write)(std::ostream&, const std::string&, const char*, const char*, const T&)) {
+    write(o_, indent_, key, comment, x);
   }
   template <class F>
   void after(F&&) {}
@@ -160,27 +160,30 @@ std::string from(const SourceRef& source) { return source.where.empty() ? "" : "
 
 }  // namespace
 
-void write_region(std::ostream& o, const std::string& indent, const char* key,
+void write_region(std::ostream& o, const std::string& indent, const char* key, const char* comment,
                   const std::optional<std::array<double, 4>>& r) {
   line(o, indent, key,
        r ? "[" + fmt((*r)[0]) + ", " + fmt((*r)[1]) + ", " + fmt((*r)[2]) + ", " + fmt((*r)[3]) + "]"
          : std::string("auto"),
-       "[m] xmin, ymin, xmax, ymax");
+       comment);
 }
 
-void write_box(std::ostream& o, const std::string& indent, const char* key, const Box& b) {
-  write_region(o, indent, key, std::array<double, 4>{b.min.x(), b.min.y(), b.max.x(), b.max.y()});
+void write_box(std::ostream& o, const std::string& indent, const char* key, const char* comment, const Box& b) {
+  write_region(o, indent, key, comment, std::array<double, 4>{b.min.x(), b.min.y(), b.max.x(), b.max.y()});
 }
 
-void write_corners(std::ostream& o, const std::string& indent, const char* key, const FloeFieldSpec& f) {
-  line(o, indent, key, "[" + std::to_string(f.corners_min) + ", " + std::to_string(f.corners_max) + "]", "[-]");
+void write_corners(std::ostream& o, const std::string& indent, const char* key, const char* comment,
+                   const FloeFieldSpec& f) {
+  line(o, indent, key, "[" + std::to_string(f.corners_min) + ", " + std::to_string(f.corners_max) + "]", comment);
 }
 
-void write_velocity(std::ostream& o, const std::string& indent, const char* key, const Velocity& v) {
-  line(o, indent, key, field_yaml(v.spec), v.shorthand == std::string_view("current") ? "[m], [m/s], [1/s], [s]" : "");
+void write_velocity(std::ostream& o, const std::string& indent, const char* key, const char* comment,
+                    const Velocity& v) {
+  line(o, indent, key, field_yaml(v.spec), comment);
 }
 
-void write_floes(std::ostream& o, const std::string& indent, const char* key, const std::vector<BodySpec>& bodies) {
+void write_floes(std::ostream& o, const std::string& indent, const char* key, const char*,
+                 const std::vector<BodySpec>& bodies) {
   write_list(o, indent, key, bodies, [&](const BodySpec& b, const std::string& first, const std::string& in) {
     o << first << "polygon: " << polygon_text(b.polygon) << "  # [m] body frame" << from(b.source) << "\n";
     line(o, in, "position", fmt(b.position), "[m] centroid");
@@ -195,7 +198,7 @@ void write_floes(std::ostream& o, const std::string& indent, const char* key, co
   });
 }
 
-void write_spatial_bodies(std::ostream& o, const std::string& indent, const char* key,
+void write_spatial_bodies(std::ostream& o, const std::string& indent, const char* key, const char*,
                           const std::vector<SpatialBodySpec>& bodies) {
   write_list(o, indent, key, bodies, [&](const SpatialBodySpec& b, const std::string& first, const std::string& in) {
     if (b.box)

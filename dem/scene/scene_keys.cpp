@@ -60,9 +60,9 @@ class KeyLister {
   }
   template <class T, class R>
   void custom(const char* key, T& x, const char* comment, R,
-              void (*write)(std::ostream&, const std::string&, const char*, const T&)) {
+              void (*write)(std::ostream&, const std::string&, const char*, const char*, const T&)) {
     std::ostringstream text;
-    write(text, "", key, x);
+    write(text, "", key, "", x);
     add(key, "custom", "", text.str(), comment);
     if constexpr (std::is_same_v<T, Velocity>) add(x.shorthand, "vec2", "m/s", "", "a uniform velocity");
   }

@@ -26,22 +26,25 @@
 
 namespace polyfloe::scene::detail {
 
-// The keys with readers and writers of their own (defined beside the other readers, and in resolved_yaml.cpp).
+// The keys with readers and writers of their own (defined beside the other readers, and in resolved_yaml.cpp); a
+// writer writes the key's lines, the one-line ones with the comment the declaration gives.
 void read_region(MapReader& m, const char* key, std::optional<std::array<double, 4>>& region);  // box or 'auto'
-void write_region(std::ostream& o, const std::string& indent, const char* key,
+void write_region(std::ostream& o, const std::string& indent, const char* key, const char* comment,
                   const std::optional<std::array<double, 4>>& region);
 struct Box {  // a rectangle given as two corners [m]
   Vec2& min;
   Vec2& max;
 };
 void read_box(MapReader& m, const char* key, Box& box);
-void write_box(std::ostream& o, const std::string& indent, const char* key, const Box& box);
+void write_box(std::ostream& o, const std::string& indent, const char* key, const char* comment, const Box& box);
 void read_corners(MapReader& m, const char* key, FloeFieldSpec& f);
-void write_corners(std::ostream& o, const std::string& indent, const char* key, const FloeFieldSpec& f);
+void write_corners(std::ostream& o, const std::string& indent, const char* key, const char* comment,
+                   const FloeFieldSpec& f);
 void read_floes(MapReader& m, const char* key, std::vector<BodySpec>& bodies);
-void write_floes(std::ostream& o, const std::string& indent, const char* key, const std::vector<BodySpec>& bodies);
+void write_floes(std::ostream& o, const std::string& indent, const char* key, const char* comment,
+                 const std::vector<BodySpec>& bodies);
 void read_spatial_bodies(MapReader& m, const char* key, std::vector<SpatialBodySpec>& bodies);
-void write_spatial_bodies(std::ostream& o, const std::string& indent, const char* key,
+void write_spatial_bodies(std::ostream& o, const std::string& indent, const char* key, const char* comment,
                           const std::vector<SpatialBodySpec>& bodies);
 // 'current' / 'wind' (a uniform velocity, `shorthand`) or 'field' (a field block of any kind), not both.
 struct Velocity {
@@ -49,7 +52,8 @@ struct Velocity {
   forcing::FieldSpec& spec;
 };
 void read_velocity(MapReader& m, const char* key, Velocity& v);
-void write_velocity(std::ostream& o, const std::string& indent, const char* key, const Velocity& v);
+void write_velocity(std::ostream& o, const std::string& indent, const char* key, const char* comment,
+                    const Velocity& v);
 
 template <class V>
 void run_keys(V& v, TimeSettings& t) {
