@@ -314,3 +314,60 @@ void World::restore(const WorldState& s) {
 }
 
 }  // namespace polyfloe::dynamics
+
+namespace polyfloe::dynamics {
+
+SlotView World::slot_view() const {
+  return {order_.slots(), order_.body_slots(), slot_static_, boxes_,       slot_dynamic_,
+          world_xy_,      bodies_.pos,         bodies_.yaw,  bodies_.reach};
+}
+
+// The contact stage (dynamics/contact_stage.h) on the slots: everything there works on slots (bodies sorted by
+// position), so the pairs, the bodies' hot state and the force sums are read and written in memory order close to
+// the order of space. slot_state_: gathered by evaluate_forces' first pass.
+void World::contact_forces(double dt) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  contact_stage_.find_pairs(slot_view(), law_, settings_.narrow_phase, threads_, lists_);
+  const auto t1 = clock::now();
+  const PlanarContactInput in{.statics = slot_static_,
+                              .states = slot_state_,
+                              .world_xy = world_xy_,
+                              .inv_mass = bodies_.inv_mass,
+                              .inv_inertia = bodies_.inv_inertia,
+                              .bonds = bonds_ ? &*bonds_ : nullptr,
+                              .narrow_phase = settings_.narrow_phase,
+                              .dt = dt,
+                              .overlap_limit = kOverlapLimit,
+                              .threads = threads_};
+  const ContactSum::Totals& t = contact_stage_.evaluate(in, law_, lists_, cache_);
+  // Into the bodies' sums, in body order: each thread writes its own stretch of the bodies' forces and torques
+  // (written by slot, neighbouring bodies of different blocks would share cache lines).
+  const int n = static_cast<int>(size());
+  POLYFLOE_OMP_FOR(threads_)
+  for (int i = 0; i < n; ++i) {
+    const int k = order_.slot_of(i);
+    bodies_.force[i] += contact_stage_.slot_force(k);
+    bodies_.torque[i] += contact_stage_.slot_torque(k);
+  }
+  contacts_ready_ = false;  // the records are listed from the stage when asked for (contacts())
+  contact_count_ = t.hits;
+  narrow_phase_failures_ += t.failures;
+  report_.deepest = t.deepest;
+  report_.shortest = t.shortest;
+  profile_.reused += t.reused;
+  profile_.broad += std::chrono::duration<double>(t1 - t0).count();
+  profile_.candidates += contact_stage_.candidates();
+  profile_.contacts += contact_count_;
+  profile_.narrow_and_law += std::chrono::duration<double>(clock::now() - t1).count();
+}
+
+const std::vector<ContactRecord>& World::contacts() const {
+  if (!contacts_ready_) {
+    contact_stage_.list_contacts(slot_static_, contacts_);
+    contacts_ready_ = true;
+  }
+  return contacts_;
+}
+
+}  // namespace polyfloe::dynamics

@@ -18,11 +18,9 @@
 #include "contact/broad_phase.h"
 #include "contact/contact_cache.h"
 #include "contact/contact_law.h"
-#include "contact/narrow_phase_gjk2d.h"
-#include "contact/narrow_phase_planar.h"
 #include "dynamics/bodies.h"
 #include "dynamics/body.h"
-#include "dynamics/contact_sum.h"
+#include "dynamics/contact_stage.h"
 #include "dynamics/drift_model.h"
 #include "dynamics/forcing_stage.h"
 #include "dynamics/neighbour_lists.h"
@@ -40,13 +38,6 @@ namespace polyfloe::dynamics {
 // contact gets fewer; the scene reader refuses run.steps_per_contact below it.
 inline constexpr double kMinStepsPerContact = 10.0;
 
-// How a pair of level floes is measured.
-enum class PlanarNarrowPhase {
-  exact,    // the overlap polygon (contact/narrow_phase_planar.h): area, centroid, chord normal, depth = area/chord
-  gjk_epa,  // the paper's method in the plane (contact/narrow_phase_gjk2d.h): the minimum translation's depth and
-            // normal at the witness midpoint, for comparison; a failed query is measured by the exact method
-};
-
 struct WorldSettings {
   contact::ContactLawSettings contact;
   PlanarNarrowPhase narrow_phase = PlanarNarrowPhase::exact;
@@ -55,19 +46,6 @@ struct WorldSettings {
   // Skin of the broad phase's neighbour lists [m]; 0 = automatic (0.2 x the mean equivalent radius of the dynamic
   // bodies). A speed knob only: the contacts found, their order and so every result are the same for any value.
   double broad_phase_skin = 0.0;
-};
-
-// One active contact of the last step (for output and diagnostics).
-struct ContactRecord {
-  int a = 0, b = 0;  // body indices, ordered so that id(a) < id(b); the normal points from a to b
-  ContactGeometry geometry;
-  double normal_force = 0.0;      // [N], on b along +normal
-  double tangential_force = 0.0;  // [N], on b along k x normal
-  bool sliding = false;
-  Vec2 force{0.0, 0.0};  // total contact force on b [N] (force_model gradient: the normal part follows
-                         // the depth gradient, close to but not exactly along the normal)
-  double energy = 0.0;   // elastic energy stored in the contact [J] (2/5 k_n d^2.5; foundation: kappa I)
-  Vec2 force_on_b() const { return force; }
 };
 
 // Everything that carries from one step to the next and is not rebuilt from the scene: what a checkpoint stores
@@ -265,8 +243,6 @@ class World {
   // Body i's packed slot data, its vertices starting at `vert_begin` in world_xy_.
   SlotStatic slot_static_of(int i, int vert_begin) const;
   void contact_forces(double dt);
-  // Adds the evaluated pairs' forces to the n bodies, stores their springs and notes the counts and extremes.
-  void sum_contacts(int n);
   // The slots as the neighbour lists read them.
   SlotView slot_view() const;
   void bond_forces(double t);
@@ -301,13 +277,8 @@ class World {
   std::vector<SlotState> slot_state_;
   std::vector<std::uint8_t> slot_dynamic_;
   std::vector<geometry::Aabb> boxes_;  // world-frame bounding boxes, by slot
-  // Per neighbour-list entry: where the pair's history was stored is kept by the lists; history_gen_ is the
-  // contact cache's generation the last contact sum stored under (after a build or a restore of the cache the
-  // histories are looked up by key, for one evaluation).
-  std::uint64_t history_gen_ = ~std::uint64_t{0};
   // scratch
   int threads_ = 1;
-  std::vector<contact::CandidatePair> pairs_;
   mutable std::vector<ContactRecord> contacts_;  // listed on demand (contacts())
   mutable bool contacts_ready_ = true;
   std::size_t contact_count_ = 0;
@@ -315,39 +286,8 @@ class World {
   mutable bool motion_ready_ = false;
   mutable std::vector<MotionSummary> motion_blocks_;  // by block of kSummaryBlock bodies, in the final kick
   void merge_motion_blocks() const;                   // motion_blocks_ into report_.motion, in block order
-  // What every pair of one contact evaluation shares.
-  struct PairStage {
-    double dt = 0.0;  // [s]
-    bool gjk = false, gradient = false, foundation = false;
-    contact::OverlapTerms terms = contact::OverlapTerms::basic;
-    double kappa = 0.0;     // the foundation modulus [Pa]
-    bool by_entry = false;  // last step's histories found through the neighbour-list entries (else by key)
-  };
-  // A touching pair as the force model sees it: the direction of the normal force on b (per unit force) and its
-  // moments about b's and a's centres, the approach rate along it and the slip rate along k x normal; with the
-  // foundation model its elastic force, stiffness and exponent.
-  struct PairDirection {
-    Vec2 dir_b{1.0, 0.0};
-    double arm_b = 0.0, arm_a = 0.0;                        // [m]
-    double rate = 0.0, slip = 0.0;                          // [m/s]
-    double elastic = 0.0, stiffness = 0.0, exponent = 2.5;  // [N], [N/m], [-]
-    Vec2 rb{0.0, 0.0};                                      // the contact point relative to b's centre [m]
-    Vec2 a_from_b{0.0, 0.0};                                // a's centre relative to b's, through the contact point [m]
-  };
-  bool measure_pair(const PairStage& stage, int a, int b, int entry, contact::PlanarContact& g, double& load,
-                    PairResult& r);
-  PairDirection pair_direction(const PairStage& stage, const contact::PlanarContact& g, double load, int a, int b,
-                               contact::PairCoefficients& k) const;
-  void evaluate_pair(const PairStage& stage, std::size_t p, PairResult& r);
-  std::vector<PairResult> pair_results_;
-  std::vector<std::uint8_t> pair_hit_;  // pair_results_[p].hit, packed: what the sum's first pass reads
-  // Their sum in pair order, on any thread count (dynamics/contact_sum.h).
-  ContactSum sum_;
-  // Each thread's place in the contact history (ContactCache::previous with a hint), a cache line apart.
-  struct alignas(64) CacheHint {
-    std::size_t at = 0;
-  };
-  std::vector<CacheHint> cache_hint_;
+  // The contact stage (dynamics/contact_stage.h): pairs, their results and sums.
+  PlanarContactStage contact_stage_;
   // The drift forcing stage (dynamics/forcing_stage.h) and what it reads of the bodies.
   DriftForcing drift_forcing_;
   DriftBodies drift_bodies() const;
