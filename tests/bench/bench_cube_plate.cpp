@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cube_plate.h"
+#include "driver_args.h"
 #include "json_out.h"
 
 namespace {
@@ -30,15 +32,9 @@ struct Config {
 
 int main(int argc, char** argv) {
   std::string out_file = "cube_plate.json";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-o" && i + 1 < argc) {
-      out_file = argv[++i];
-    } else {
-      std::fprintf(stderr, "usage: %s [-o FILE.json]\n", argv[0]);
-      return 2;
-    }
-  }
+  CLI::App app("The cube-plate impact against equations (6) and (7), every spatial contact method", "bench_cube_plate");
+  app.add_option("-o", out_file, "the JSON file written")->capture_default_str();
+  if (const std::optional<int> stop = tsupport::parse_args(app, argc, argv)) return *stop;
   constexpr double deg = std::numbers::pi / 180.0;
   std::vector<double> angles{0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 4.0};
   for (int a = 5; a <= 45; a += 5) angles.push_back(a);

@@ -64,6 +64,7 @@
 #include <map>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <span>
 #include <string>
@@ -77,6 +78,7 @@
 #include "contact_methods.h"
 #include "geometry/polyhedron.h"
 #include "failure_map_cases.h"
+#include "driver_args.h"
 #include "json_out.h"
 #include "test_support.h"
 
@@ -215,25 +217,14 @@ int main(int argc, char** argv) {
   bool quick = false;
   int n_random = -1, n_degenerate = -1;
   std::uint64_t seed = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto count = [&](int& n) {
-      n = std::atoi(argv[++i]);
-      return n > 0;
-    };
-    if (arg == "-o" && i + 1 < argc) {
-      out_file = argv[++i];
-    } else if (arg == "--quick") {
-      quick = true;
-    } else if (arg == "--random" && i + 1 < argc && count(n_random)) {
-    } else if (arg == "--degenerate" && i + 1 < argc && count(n_degenerate)) {
-    } else if (arg == "--seed" && i + 1 < argc) {
-      seed = std::strtoull(argv[++i], nullptr, 10);
-    } else {
-      std::fprintf(stderr, "usage: %s [-o FILE.json] [--quick] [--random N] [--degenerate N] [--seed S]\n", argv[0]);
-      return 2;
-    }
-  }
+  CLI::App app("The failure map of the contact methods over random and degenerate pairs of floes", "bench_failure_map");
+  app.add_option("-o", out_file, "the JSON file written")->capture_default_str();
+  app.add_flag("--quick", quick, "fewer pairs (2,000 random, 200 per degenerate set) and 3 timed passes");
+  app.add_option("--random", n_random, "random pairs (default 20,000; --quick 2,000)")->check(CLI::Range(1, 10000000));
+  app.add_option("--degenerate", n_degenerate, "pairs per degenerate set (default 1,000; --quick 200)")
+      ->check(CLI::Range(1, 10000000));
+  app.add_option("--seed", seed, "added to every set's seed")->capture_default_str();
+  if (const std::optional<int> stop = tsupport::parse_args(app, argc, argv)) return *stop;
   const auto t_start = Clock::now();
   if (n_random < 0) n_random = quick ? 2000 : 20000;
   if (n_degenerate < 0) n_degenerate = quick ? 200 : 1000;

@@ -40,6 +40,7 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -47,6 +48,7 @@
 #include "contact/narrow_phase_planar.h"
 #include "contact_methods.h"
 #include "dense_pack.h"
+#include "driver_args.h"
 #include "json_out.h"
 #include "dynamics/world.h"
 #include "forcing/analytic_fields.h"
@@ -200,21 +202,13 @@ int main(int argc, char** argv) {
   std::string out_file = "stability_map.json";
   bool quick = false;
   std::vector<std::string> only;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-o" && i + 1 < argc) {
-      out_file = argv[++i];
-    } else if (a == "--only" && i + 1 < argc &&
-               (std::string(argv[i + 1]) == "impacts" || std::string(argv[i + 1]) == "packs" ||
-                std::string(argv[i + 1]) == "cost")) {
-      only.push_back(argv[++i]);
-    } else if (a == "--quick") {
-      quick = true;
-    } else {
-      std::fprintf(stderr, "usage: %s [-o FILE.json] [--quick] [--only impacts|packs|cost]...\n", argv[0]);
-      return 2;
-    }
-  }
+  CLI::App app("The stability map: binary impacts, jammed packs and the cost against the steps per contact",
+               "bench_stability");
+  app.add_option("-o", out_file, "the JSON file written")->capture_default_str();
+  app.add_flag("--quick", quick, "one modulus, two mass ratios, 6 pairs per cell");
+  app.add_option("--only", only, "run only these parts (repeatable; default all)")
+      ->check(CLI::IsMember({"impacts", "packs", "cost"}));
+  if (const std::optional<int> stop = tsupport::parse_args(app, argc, argv)) return *stop;
   auto wanted = [&](const char* part) {
     return only.empty() || std::find(only.begin(), only.end(), part) != only.end();
   };
