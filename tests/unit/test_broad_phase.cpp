@@ -91,7 +91,7 @@ TEST(BroadPhase, PowerLawSizesAutomaticAndFixedCells) {
   }
 }
 
-TEST(BroadPhase, DenseClusterManyOverlaps) {
+TEST(BroadPhase, DenseClusterGivesExactlyTheBruteForcePairsWithAutomaticAndFixedCells) {
   std::mt19937_64 rng(2);
   const int n = 400;
   const auto boxes = power_law_boxes(rng, n, 100.0);  // heavily overlapping
@@ -103,7 +103,7 @@ TEST(BroadPhase, DenseClusterManyOverlaps) {
   EXPECT_GT(brute_pairs(boxes, dyn).size(), 3000u);  // the set really is dense
 }
 
-TEST(BroadPhase, HugeAreaHitsCellCap) {
+TEST(BroadPhase, HugeAreaCapsTheCellCountByEnlargingTheCellAndKeepsEveryPair) {
   std::mt19937_64 rng(3);
   // A few clusters of floes kilometres apart, plus a long wall: the automatic cell would give ~1e10 cells.
   std::uniform_real_distribution<double> u(0.0, 1.0);

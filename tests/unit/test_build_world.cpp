@@ -110,7 +110,7 @@ void expect_field_in_space_order(const dynamics::World& w, int first) {
   EXPECT_GT(moved, static_cast<std::size_t>(n - first) / 2) << "the space order should differ from the size order";
 }
 
-TEST(BuildWorld, ChannelSceneIdsWallsAndField) {
+TEST(BuildWorld, ChannelSceneHasSixWallsFirstThenItsFieldInSpaceOrderAndFreeDriftAsReferenceSpeed) {
   const Scene s = read_scene(kSceneDir + "channel.yaml", {});
   const double v = forcing::free_drift_velocity(s.world.drift, s.ocean_field.velocity, s.wind_field.velocity).norm();
   EXPECT_GT(v, 4.0);
@@ -127,7 +127,7 @@ TEST(BuildWorld, ChannelSceneIdsWallsAndField) {
   EXPECT_GT(time_step(s, w), 0.0);
 }
 
-TEST(BuildWorld, GivenAndAutomaticIds) {
+TEST(BuildWorld, GivenIdsAreKeptAndABodyWithoutOneGetsTheSmallestFreeId) {
   Scene s;
   s.bodies = {square({0, 0}), square({10, 0}), square({20, 0})};
   s.bodies[1].id = 0;

@@ -18,7 +18,7 @@ std::shared_ptr<const geometry::ConvexPolygon> square(double side) {
   return tsupport::shape_of({{-h, -h}, {h, -h}, {h, h}, {-h, h}});
 }
 
-TEST(ChannelMonitor, FluxSpeedAndJam) {
+TEST(ChannelMonitor, SamplesMatchHandValuesAndAJamIsFlaggedOnlyAJamWindowAfterTheLastNetFlow) {
   scene::ChannelSpec spec;  // defaults: gate at x = 1100 + 300 = 1400, strait to 2000, opening y in [375, 625]
   dynamics::WorldSettings ws;
   ws.drift = forcing::DriftSettings::none();

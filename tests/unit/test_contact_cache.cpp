@@ -28,7 +28,7 @@ TEST(ContactCache, ValuesLiveOneStepUnlessRefreshed) {
   EXPECT_EQ(c.size(), 1u);
 }
 
-TEST(ContactCache, ManyEntriesAndRoundTrip) {
+TEST(ContactCache, TensOfThousandsOfPairsReadBackAndEntriesComeSortedAndRestoreExactly) {
   std::mt19937_64 rng(5);
   ContactCache c;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> keys;

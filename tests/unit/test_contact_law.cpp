@@ -63,7 +63,7 @@ std::pair<double, double> integrate_impact(Force f, double m, double v, double h
 
 }  // namespace
 
-TEST(ContactLaw, EffectiveModulusRadiusMass) {
+TEST(ContactLaw, EffectiveModulusRadiusAndMassMatchHandValuesAndAWallGivesTheFloesOwn) {
   EXPECT_DOUBLE_EQ(contact::effective_modulus(1.0e9, 0.3), 549450549.4505495);
   EXPECT_DOUBLE_EQ(contact::effective_radius(3.0, 6.0), 2.0);
   EXPECT_DOUBLE_EQ(contact::effective_mass(1000.0, 3000.0), 750.0);
@@ -119,7 +119,7 @@ TEST(ContactLaw, DampingCoefficientFromRestitution) {
   EXPECT_EQ(elastic.coefficients(3.0, 6.0, 1.0e4, 3.0e4).damping, 0.0);
 }
 
-TEST(ContactLaw, NormalForceElasticAndDamped) {
+TEST(ContactLaw, NormalForceIsHertzPlusDampingLinearInTheRateAndNeverNegative) {
   for (DampingModel model : {DampingModel::speed_independent, DampingModel::paper}) {
     const ContactLaw law(settings(0.3, 0.3, model));
     const auto c = law.coefficients(4.0, 4.0, 2.0e4, 2.0e4);

@@ -317,7 +317,8 @@ TEST(FloeField, KeepsClearOfObstacles) {
   }
 }
 
-TEST(FloeField, PaperField50And60Percent) {  // (speed: tests/bench/bench_floe_field.cpp)
+// (speed: tests/bench/bench_floe_field.cpp)
+TEST(FloeField, PaperFieldsAt50And60PercentAreValidAndAt50PercentNearThePapersFloeCount) {
   for (double c : {0.5, 0.6}) {
     const FloeFieldSpec s = paper_spec(c);
     const FloeField f = generate_floe_field(s, 920.0, 0);

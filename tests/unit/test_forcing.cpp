@@ -70,7 +70,7 @@ TEST(Fields, SolidBodyAndRankineVorticesGiveTheirClosedFormsContinuousAtTheCore)
   EXPECT_EQ(at(r, {0.0, 0.0, 0}, 0), Vec2(0.0, 0.0));
 }
 
-TEST(Fields, TidalAndTimeSeries) {
+TEST(Fields, TidalIsAUniformCosineAboutTheMeanAndTimeSeriesInterpolateClampWrapOrThrow) {
   FieldSpec s;
   s.kind = FieldKind::tidal;
   s.velocity = {0.1, 0.0};
@@ -224,7 +224,7 @@ TEST(DriftKernels, FormDragOnlyOnFacesMovingIntoTheWater) {
   EXPECT_FALSE(rest.has_damping());
 }
 
-TEST(DriftKernels, FormDragOnASpinningSquareByHand) {
+TEST(DriftKernels, FormDragOnASpinningSquareSumsOnlyTheFacesMovingIntoTheWater) {
   // Square of side 10 centred at the origin, u = (1, 0.3) m/s, omega = 0.1 rad/s, still water, C rho d / 2 = 100.
   // Face centres r, normals n, w = u + omega k x r:
   //   +x: r = (5, 0),  w = (1, 0.8),   w.n = 1    -> f = -100 10 1 (1, 0.8) = (-1000, -800), r x f = -4000
@@ -343,7 +343,7 @@ TEST(DriftKernels, DampingIsTheJacobian) {
   EXPECT_LT((df * dir - jf * dir).norm(), 1e-7 * (df * dir).norm());
 }
 
-TEST(DriftKernels, MomentDragAndCoriolis) {
+TEST(DriftKernels, MomentDragOpposesTheSpinAndCoriolisPushesRightWithFFromLatitudeAndBeta) {
   forcing::DriftLoad load;
   forcing::add_moment_drag(load, 0.14, 1025.0, 36.0, 5.0, -0.2);
   EXPECT_NEAR(load.torque, 0.5 * 0.14 * 1025.0 * 36.0 * 125.0 * 0.04, 1e-9);    // opposes omega_rel < 0

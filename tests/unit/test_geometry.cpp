@@ -37,7 +37,7 @@ TEST(Polygon, RightTriangleAreaPerimeterCentroidAndPolarMomentMatchHandValues) {
   EXPECT_NEAR(p.polar_moment(), 6.0 * 25.0 / 18.0, 1e-12);
 }
 
-TEST(Polygon, RegularPolygonTendsToCircle) {
+TEST(Polygon, RegularPolygonTendsToTheCircleAndASquaresCircularityIsRootPiOverTwo) {
   const ConvexPolygon p = ConvexPolygon::regular(720, 2.0);
   EXPECT_NEAR(p.area(), std::numbers::pi * 4.0, 1e-3);
   EXPECT_NEAR(p.polar_moment(), std::numbers::pi * 16.0 / 2.0, 1e-2);
@@ -46,7 +46,7 @@ TEST(Polygon, RegularPolygonTendsToCircle) {
   EXPECT_NEAR(ConvexPolygon::rectangle(3, 3).circularity(), std::sqrt(std::numbers::pi) / 2.0, 1e-12);
 }
 
-TEST(Polygon, PrismMassAndDraft) {
+TEST(Polygon, PrismMassInertiaAndFloatingDraftMatchClosedForms) {
   const ConvexPolygon sq = ConvexPolygon::rectangle(10, 10);
   const auto m = polyfloe::geometry::prism_mass(sq, 2.0, 920.0);
   EXPECT_NEAR(m.mass, 920.0 * 200.0, 1e-9);

@@ -159,7 +159,7 @@ bool h5_has_attr(hid_t file, const char* object, const char* attr) {
 
 }  // namespace
 
-TEST(IoWriters, ThreeFramesReadBack) {
+TEST(IoWriters, ThreeFramesWrittenToVtkAndHdf5ReadBackAsTheWorldWasAtEachFrame) {
   TempDir dir;
   auto world = make_world();
   const auto n = static_cast<int>(world->size());

@@ -150,7 +150,7 @@ TEST(NarrowPhaseCcd, ToStringGivesEachMethodsSnakeCaseName) {
 
 // Unit cubes, B shifted by ±0.9 along one axis (overlap 0.1) and by (0.3, 0.2) across it, so no faces are coplanar:
 // depth 0.1 ± 1e-6, normal ±e_k ± 1e-6 pointing from A to B (the side B is on). This fixes libccd's sign.
-TEST(NarrowPhaseCcd, CubesOverlappingAlongEachAxis) {
+TEST(NarrowPhaseCcd, CubesOverlappingATenthAlongAnAxisGiveThatDepthAndTheAxisNormalTowardsB) {
   const auto a = box(Vec3::Zero(), Vec3::Ones());
   for (const CcdMethod m : kMethods)
     for (int k = 0; k < 3; ++k)
@@ -178,7 +178,7 @@ TEST(NarrowPhaseCcd, CubesOverlappingAlongEachAxis) {
 
 // The same with B level with A across the axis (all side faces coplanar, libccd's degenerate case in miniature):
 // depth 0.1 ± 1e-6, normal ±e_k ± 1e-6.
-TEST(NarrowPhaseCcd, AlignedCubesCoplanarFaces) {
+TEST(NarrowPhaseCcd, CubesLevelAcrossTheAxisWithCoplanarSideFacesStillGiveTheDepthAndNormal) {
   const auto a = box(Vec3::Zero(), Vec3::Ones());
   for (const CcdMethod m : kMethods)
     for (int k = 0; k < 3; ++k)
@@ -211,7 +211,7 @@ TEST(NarrowPhaseCcd, RandomlyRotatedAndMovedCubesGiveTheRotatedAxisNormalAndDept
 }
 
 // A 1 m cube 5 cm deep in the top of a 10 x 8 x 1 m slab: depth 0.05 ± 1e-6, normal +z (slab first) or -z.
-TEST(NarrowPhaseCcd, BoxRestingIntoLargerBox) {
+TEST(NarrowPhaseCcd, CubeSunkFiveCentimetresIntoASlabGivesThatDepthAndTheVerticalNormalFromAToB) {
   const auto slab = box(Vec3(-5.0, -4.0, -1.0), Vec3(5.0, 4.0, 0.0));
   const auto cube = box(Vec3(0.5, -0.3, -0.05), Vec3(1.5, 0.7, 0.95));
   for (const CcdMethod m : kMethods) {

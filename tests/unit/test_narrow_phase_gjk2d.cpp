@@ -165,7 +165,7 @@ TEST(Gjk2d, ARigidMotionOfThePairMovesTheDepthNormalAndPointWithIt) {
 
 // A 1 m triangle whose tip pokes 1 cm into the top face of a 100 m square: depth 1 cm, normal +y (square to
 // triangle), the point halfway between the tip and the face.
-TEST(Gjk2d, SmallTriangleIntoBigSquareEdge) {
+TEST(Gjk2d, TriangleTipACentimetreIntoABigSquareGivesThatDepthAndTheNormalFromAToB) {
   const Poly square = box({0, 0}, 50, 50);
   const Poly tri = {{0.0, 49.99}, {0.5, 50.8}, {-0.5, 50.8}};
   const Gjk2dContact r = gjk_epa_2d(square, tri);
@@ -186,7 +186,7 @@ TEST(Gjk2d, SmallTriangleIntoBigSquareEdge) {
 // Regular 12-gons face to face along a face normal u, overlapping by d: the minimum translation is d along u. The
 // planar method measures area / chord of the overlap hexagon instead: the same normal (by symmetry) and the depth
 // (s d + d^2 / (2 tan 30°)) / (s + d / tan 30°) for side s, which tends to d as d / s -> 0.
-TEST(Gjk2d, TwelveGonsAgainstPlanar) {
+TEST(Gjk2d, FaceToFaceTwelveGonsGiveTheOverlapAsDepthAndAgreeWithPlanarToOrderDSquared) {
   const double r = 10.0;                                 // circumradius [m]
   const double h = r * std::cos(std::numbers::pi / 12);  // apothem [m]
   const double side = 2.0 * r * std::sin(std::numbers::pi / 12);
@@ -385,7 +385,7 @@ TEST(Gjk2d, RandomPairsAgainstSeparatingAxes) {
 
 // The iteration bounds are honoured: a generic 12-gon pair needs several EPA steps; with one it fails, as it does
 // with a single GJK step. Bad input fails with a reason, never throws.
-TEST(Gjk2d, IterationBoundAndBadInput) {
+TEST(Gjk2d, OneEpaOrGjkIterationFailsNamingTheLimitAndBadInputFailsWithoutThrowing) {
   const Poly a = regular(12, 10.0, {0, 0}, 0.1);
   const Poly b = regular(12, 10.0, {18.0, 5.0}, 0.37);
   const Gjk2dContact ok = gjk_epa_2d(a, b);

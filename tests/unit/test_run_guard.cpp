@@ -59,7 +59,7 @@ TEST(RunGuard, BodyFasterThanTheSpeedLimitNamesTheBodyAndItsSpeed) {
   EXPECT_NE(m.find("body 102 moves at 60 m/s"), std::string::npos) << m;
 }
 
-TEST(RunGuard, RunawayEnergyInManyBodies) {
+TEST(RunGuard, RunawayEnergySpreadOverBodiesBelowTheSpeedLimitNamesTheMostEnergetic) {
   // 40 floes at 12 m/s: none near the per-body limit of 50 m/s, but together more kinetic energy than all of them
   // at 10 x the reference speed of 1 m/s.
   dynamics::World w = floes(40, {12.0, 0.0});

@@ -82,7 +82,7 @@ TEST(SceneReader, ChannelSceneGivesEveryValueInTheFileAndWhereTheFloeFieldWasGiv
   EXPECT_TRUE(starts_with(s.floe_field->source.where, kSceneDir + "channel.yaml:"));
 }
 
-TEST(SceneReader, TwoFloesSceneParses) {
+TEST(SceneReader, TwoFloesSceneHasTwoFloesClosingAtItsReferenceSpeedWithSkinAndAirDragOff) {
   const Scene s = read_scene(kSceneDir + "two_floes.yaml", {});
   ASSERT_EQ(s.bodies.size(), 2u);
   EXPECT_EQ(s.bodies[0].velocity, Vec2(1.0, 0.0));
@@ -271,7 +271,7 @@ TEST(SceneErrors, UnusableRectangleOrRegularPolygonIsRefusedByTheReader) {
 
 // yaml-cpp 0.7 takes a quoted string left open at the end of the file as the rest of the file; a control byte
 // means the file is not text. Both are syntax errors with the line.
-TEST(SceneErrors, UnclosedQuoteAndBinaryBytes) {
+TEST(SceneErrors, UnclosedQuoteAndControlByteAreRefusedAtTheirLineAndColumn) {
   std::string m = parse_error("run: {duration: 1}\nname: \"abc\nfloes: []\n");
   EXPECT_TRUE(contains(m, "t.yaml:2:7: YAML syntax error: the quoted string that starts here is never closed")) << m;
   m = parse_error("name: 'it''s\n");
@@ -343,7 +343,7 @@ TEST(SceneErrors, NonFiniteNumbersAreRejected) {
   EXPECT_TRUE(starts_with(m, "t.yaml:2:27: key 'floes.0.polygon.1.1': .nan is not a finite number")) << m;
 }
 
-TEST(SceneErrors, MissingRequiredAndExclusiveKeys) {
+TEST(SceneErrors, MissingRequiredKeysOrBothOfTwoExclusiveKeysAreRefusedNamingTheKeys) {
   std::string m = parse_error("floes:\n  - position: [0, 0]\n");
   EXPECT_TRUE(starts_with(m,
                           "t.yaml:2:5: key 'floes.0': missing the shape: give one of 'polygon', 'regular' or "
@@ -366,7 +366,7 @@ TEST(SceneErrors, ClockwiseNonConvexOrTwoPointPolygonsAreRefusedWithTheReason) {
   EXPECT_TRUE(contains(m, "at least 3 points")) << m;
 }
 
-TEST(SceneErrors, DuplicateKeysAndIds) {
+TEST(SceneErrors, DuplicateKeyOrIdIsRefusedAtItsSecondUseNamingTheFirst) {
   std::string m = parse_error(std::string(kOneFloe) + "run: {duration: 1, duration: 2}\n");
   EXPECT_TRUE(starts_with(m, "t.yaml:3:20: key 'run.duration': duplicate key (first given at t.yaml:3:7)")) << m;
   m = parse_error("floes:\n  - {regular: {sides: 3, radius: 1}, id: 4}\n  - {regular: {sides: 3, radius: 1}, id: 4}\n");
@@ -415,7 +415,7 @@ TEST(SceneOverrides, AppliedBeforeValidation) {
   EXPECT_EQ(s.overrides.size(), 6u);
 }
 
-TEST(SceneOverrides, ListItemsByIndexAndNewBlocks) {
+TEST(SceneOverrides, SetReachesListItemsByIndexCreatesOrRemovesBlocksAndReplacesWholeLists) {
   const Scene s = read_scene(kSceneDir + "two_floes.yaml", {"floes.0.position=[1,2]", "floes.1.velocity=[-2, 0]",
                                                             "contact.restitution=1", "floes.1.motion=fixed"});
   EXPECT_EQ(s.bodies[0].position, Vec2(1, 2));

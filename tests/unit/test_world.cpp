@@ -84,7 +84,7 @@ TEST(World, AddBodyReturnsConsecutiveIndicesIdsMapBothWaysAndUnknownIdsGiveMinus
   EXPECT_EQ(w.index_of(999), -1);
 }
 
-TEST(World, MassPropertiesAndDiagnostics) {
+TEST(World, PrismMassAndInertiaMatchClosedFormsAndDiagnosticsCountDynamicBodiesOnly) {
   dynamics::World w(no_drift());
   // 10 m x 4 m x 2 m prism, rho = 900: m = 72000 kg, I = m (10^2 + 4^2) / 12.
   const int a = w.add_body({.id = 1,

@@ -86,7 +86,7 @@ class ConservationByModel : public ::testing::TestWithParam<contact::ForceModel>
 
 std::string model_name(contact::ForceModel m) { return contact::force_model_name(m); }
 
-TEST_P(ConservationByModel, MomentumWithFrictionAndDamping) {
+TEST_P(ConservationByModel, FieldWithFrictionAndDampingKeepsLinearAndAngularMomentumToRounding) {
   const Field f = make_field(20240613, 200, 9.5, 1.0, 0.1);
   ASSERT_EQ(f.bodies.size(), 200u);
   dynamics::World w(free_space(0.5, 0.5, GetParam()));
@@ -122,7 +122,7 @@ TEST_P(ConservationByModel, MomentumWithFrictionAndDamping) {
 
 // The acceptance run: the gradient force model conserves energy; the centroid model's drift is measured and
 // bounded (a regression guard, and the number quoted in docs/validation.md).
-TEST_P(ConservationByModel, EnergyFrictionlessElasticField) {
+TEST_P(ConservationByModel, FrictionlessElasticFieldKeepsKineticPlusElasticEnergyWithinItsModelsBound) {
   const bool gradient = GetParam() == contact::ForceModel::gradient;
   const Field f = make_field(777, 200, 9.5, 1.0, 0.1);
   ASSERT_EQ(f.bodies.size(), 200u);
@@ -161,7 +161,7 @@ TEST_P(ConservationByModel, EnergyFrictionlessElasticField) {
   EXPECT_LT(max_free_err, gradient ? 5e-3 : 3e-2);
 }
 
-TEST_P(ConservationByModel, HeadOnElasticImpactOfSquares) {
+TEST_P(ConservationByModel, HeadOnElasticImpactOfSquaresGivesBackTheKineticEnergyToAThousandth) {
   dynamics::World w(free_space(0.0, 1.0, GetParam()));
   auto sq = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(10, 10));
   const double v = 1.0;
@@ -249,7 +249,7 @@ VertexImpact corner_on_face(double yaw, double offset, double steps_per_contact,
 // the normal, so the stored energy is 2/5 k_n d^2.5 (the 4/5 column shows what a force of k_n d^1.5 would store).
 // Reference: E0 = the kinetic energy before the impact; tolerances: d = h/2 to 1e-9, KE after the impact 1e-4,
 // KE + 2/5 k_n d^2.5 during it 0.1 %.
-TEST(Conservation, SymmetricCornerOnFaceImpact) {
+TEST(Conservation, SymmetricCornerOnFaceHasHalfThePenetrationAsDepthAndConservesEnergy) {
   for (double offset : {0.0, 3.0}) {
     const VertexImpact r = corner_on_face(std::numbers::pi / 4, offset, 40.0);
     std::printf(
@@ -265,7 +265,7 @@ TEST(Conservation, SymmetricCornerOnFaceImpact) {
 // The same impact with the corner not bisected by the face normal (yaw 30 degrees): the overlap triangle is
 // lopsided. With the force at the overlap centroid this lost 2.1e-3 of the kinetic energy at 40 and at 400 steps
 // per contact (not a time-step error); with the gradient force it is conservative.
-TEST(Conservation, LopsidedCornerOnFaceImpact) {
+TEST(Conservation, LopsidedCornerOnFaceImpactConservesEnergyWithTheGradientForce) {
   for (double steps : {40.0, 400.0}) {
     const VertexImpact r = corner_on_face(std::numbers::pi / 6, 0.0, steps);
     std::printf(

@@ -156,7 +156,7 @@ double impact_energy_error(contact::ForceModel model, double yaw_a, double yaw_b
 
 class ContactEnergy : public ::testing::TestWithParam<contact::ForceModel> {};
 
-TEST_P(ContactEnergy, CornerRichElasticGasInAWalledBox) {
+TEST_P(ContactEnergy, CornerRichElasticGasReachesAThousandCollisionsWithinEachModelsEnergyBound) {
   const GasOutcome o = corner_rich_gas(GetParam());
   EXPECT_GE(o.collisions, 1000);
   EXPECT_GT(o.free_steps, 1000u);
@@ -167,7 +167,7 @@ TEST_P(ContactEnergy, CornerRichElasticGasInAWalledBox) {
   EXPECT_LT(o.max_error, bound[static_cast<int>(GetParam())]);
 }
 
-TEST_P(ContactEnergy, SingleCornerImpactsOverTheStep) {
+TEST_P(ContactEnergy, SingleCornerImpactsStayWithinEachModelsEnergyBoundAtFortyStepsPerContact) {
   struct Case {
     const char* name;
     double yaw_a, yaw_b, offset;
@@ -221,7 +221,7 @@ TEST_P(ContactEnergy, SingleCornerImpactsOverTheStep) {
 
 // A floe pressed flat on a wall: does its face stay on the wall? A model without tilt stiffness lets it roll onto
 // a corner.
-TEST_P(ContactEnergy, FloePressedFlatOnAWall) {
+TEST_P(ContactEnergy, FloePressedFlatOnAWallStaysWithinAMilliradianOfFlatForAHundredSeconds) {
   constexpr double kLength = 20.0, kWidth = 2.0, kDepth = 5e-3;
   dynamics::WorldSettings ws;
   ws.contact.force_model = GetParam();

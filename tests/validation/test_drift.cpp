@@ -84,7 +84,7 @@ Vec2 coriolis_free_drift(const forcing::DriftSettings& s, const Vec2& uc, const 
   return u;
 }
 
-TEST(Drift, FreeDriftSkinAndAirAlongOneAxis) {
+TEST(Drift, SkinAndAirDragBringEveryFloeToTheClosedFormFreeDriftWithinHalfAPercent) {
   const Vec2 uc{0.2, 0.0}, ua{10.0, 0.0};
   dynamics::WorldSettings ws;
   ws.drift = skin_and_air(uc, ua);
@@ -112,7 +112,7 @@ TEST(Drift, FreeDriftSkinAndAirAlongOneAxis) {
   }
 }
 
-TEST(Drift, FreeDriftWithCoriolis) {
+TEST(Drift, FreeDriftWithCoriolisIsTheBalanceRootRightOfTheWindInTheNorthAndLeftInTheSouth) {
   for (const auto& [uc, ua, lat] :
        {std::tuple{Vec2(0.0, 0.0), Vec2(10.0, 0.0), 75.0}, std::tuple{Vec2(0.1, -0.05), Vec2(8.0, 6.0), 60.0},
         std::tuple{Vec2(0.0, 0.0), Vec2(10.0, 0.0), -70.0}}) {
@@ -182,7 +182,7 @@ TEST(Drift, InertialCircleHasPeriodTwoPiOverFRadiusUOverFAndKeepsTheSpeed) {
   EXPECT_NEAR(w.velocities()[0].norm(), u0, 1e-12);  // the Cayley rotation keeps |u| exactly
 }
 
-TEST(Drift, FormDragOnASquareAtRest) {
+TEST(Drift, FormDragOnASquareAtRestIsTheHandValueAlongTheCurrentWithNoTorqueAtAnyYaw) {
   for (double yaw_deg : {0.0, 30.0, 45.0, 110.0}) {
     const double l = 12.0, h = 1.0, u = 0.7;
     dynamics::WorldSettings ws;

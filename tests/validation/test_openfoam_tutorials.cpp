@@ -125,7 +125,7 @@ class Tutorials : public ::testing::Test {
 
 // porousBlockage (pisoFoam, #includeEtc in 0/U): the solution times 1 and 2 s imported, t = 0 (the initial
 // condition) left out by default; --times all reads t = 0 too, from a copy OpenFOAM wrote out plainly.
-TEST_F(Tutorials, TransientWithIncludeEtc) {
+TEST_F(Tutorials, TransientCaseLeavesOutTimeZeroUnlessAskedAndMatchesOpenFoamsProbes) {
   const std::string log = slurp(work_ / "porousBlockage" / "log.import");
   EXPECT_NE(log.find("times read: 1, 2 s of the case's 0, 1, 2 s (t = 0, the initial condition, left out"),
             std::string::npos)
@@ -140,7 +140,7 @@ TEST_F(Tutorials, TransientWithIncludeEtc) {
 }
 
 // pitzDaily (simpleFoam): a 0.3 m channel made 300 m by --scale 1000, its 10 m/s inflow 1 m/s.
-TEST_F(Tutorials, SteadyInMillimetres) {
+TEST_F(Tutorials, SteadyCaseInMillimetresIsScaledAsAskedAndMatchesOpenFoamsProbes) {
   const std::string log = slurp(work_ / "pitzDaily" / "log.import");
   EXPECT_NE(log.find("steady, 1 time(s)"), std::string::npos) << log;
   EXPECT_NE(log.find("mesh: x -20.6 to 290 m, y -25.4 to 25.4 m"), std::string::npos) << log;
@@ -150,7 +150,7 @@ TEST_F(Tutorials, SteadyInMillimetres) {
 
 // porousBlockage on two processors, imported from processor0/ and processor1/ before reconstructPar; the probes
 // are of the reconstructed case.
-TEST_F(Tutorials, DecomposedRun) {
+TEST_F(Tutorials, DecomposedCaseIsReadFromItsProcessorFoldersAndMatchesOpenFoamsProbes) {
   const std::string log = slurp(work_ / "decomposed" / "log.import");
   EXPECT_NE(log.find("decomposed: read from 2 processor folders"), std::string::npos) << log;
   EXPECT_NE(log.find("times read: 1, 2 s"), std::string::npos) << log;

@@ -99,7 +99,7 @@ TEST(Restitution, SpeedIndependentModelHitsTargetAtAllSpeeds) {
 // foundation model n = 3; the centroid model maps restitution through Hertz's n = 2.5 whatever the shape).
 class RestitutionGrid : public ::testing::TestWithParam<contact::ForceModel> {};
 
-TEST_P(RestitutionGrid, WorstErrorOverTheFullGrid) {
+TEST_P(RestitutionGrid, EveryTargetIsMetWithinTheModelsBoundOverSpeedsAndEntryPhases) {
   const bool foundation = GetParam() == contact::ForceModel::foundation;
   double worst_face = 0.0, worst_corner = 0.0;
   for (double e : {0.1, 0.3, 0.5, 0.9}) {
