@@ -2,7 +2,7 @@
 # Builds with AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/ and runs the tests under them.
 #   bash scripts/sanitize.sh            every test but the slow label (the validation tests take ~7 min here)
 #   bash scripts/sanitize.sh --ci       unit and regression tests (the CI step): builds only those folders and no
-#                                       benchmarks, and leaves out four of the five kill-and-restart runs and the
+#                                       benchmarks, and leaves out three of the five kill-and-restart runs and the
 #                                       two 2-thread runs (1.5-2.5 min each under the sanitizers; the test step runs
 #                                       them; their code runs here through the channel's kill-and-restart, the
 #                                       restart and state tests and the 2-thread unit tests)
