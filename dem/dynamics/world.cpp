@@ -313,10 +313,6 @@ void World::restore(const WorldState& s) {
   motion_ready_ = false;
 }
 
-}  // namespace polyfloe::dynamics
-
-namespace polyfloe::dynamics {
-
 SlotView World::slot_view() const {
   return {order_.slots(), order_.body_slots(), slot_static_, boxes_,       slot_dynamic_,
           world_xy_,      bodies_.pos,         bodies_.yaw,  bodies_.reach};
