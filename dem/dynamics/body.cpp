@@ -1,5 +1,8 @@
 #include "dynamics/body.h"
 
+#include <algorithm>
+#include <numeric>
+
 namespace polyfloe::dynamics {
 
 std::string_view to_string(Motion m) {
@@ -9,6 +12,12 @@ std::string_view to_string(Motion m) {
     case Motion::kinematic: return "kinematic";
   }
   return "unknown";
+}
+
+void sort_by_id(std::span<const BodyId> ids, std::vector<int>& order) {
+  order.resize(ids.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [ids](int a, int b) { return ids[a] < ids[b]; });
 }
 
 }  // namespace polyfloe::dynamics

@@ -3,7 +3,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string_view>
+#include <vector>
 
 #include "geometry/polygon.h"
 
@@ -13,6 +15,9 @@ using geometry::Vec2;
 
 // Stable body identifier: never reused, never an index. Contact history and output are keyed by it.
 using BodyId = std::uint64_t;
+
+// The indices of `ids` in increasing id, into `order` (the worlds' id_order()).
+void sort_by_id(std::span<const BodyId> ids, std::vector<int>& order);
 
 enum class Motion : std::uint8_t {
   dynamic = 0,    // integrated from forces

@@ -7,14 +7,14 @@ namespace polyfloe::dynamics {
 
 namespace {
 
-bool slot_less(const SlotKey& a, const SlotKey& b) { return a.key != b.key ? a.key < b.key : a.body < b.body; }
+bool slot_less(const SlotKey& a, const SlotKey& b) { return a.key != b.key ? a.key < b.key : a.id < b.id; }
 
 }  // namespace
 
 const std::vector<std::pair<int, int>>& SlotOrder::sort(bool keys_changed) {
   const int n = static_cast<int>(slots_.size());
   moved_.clear();
-  if (!keys_changed) return moved_;  // sorted by (key, body) as before: nothing moves (most steps)
+  if (!keys_changed) return moved_;  // sorted by (key, id) as before: nothing moves (most steps)
   // Insertion sort from the last order. Each move permutes the slots of an interval among themselves; overlapping
   // intervals are merged, so that each recorded interval holds the same bodies as before.
   std::size_t moves = 0;

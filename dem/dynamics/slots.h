@@ -1,5 +1,5 @@
 // The contact stage's slots: the planar World's bodies sorted by position (cells numbered tile by tile, as the
-// broad phase numbers its cells; ties by index), so that bodies close in space are close in memory whatever order
+// broad phase numbers its cells; ties by id, so that the order does not depend on where the bodies are stored), so that bodies close in space are close in memory whatever order
 // they were added in. Slots are private to the step; these are the records it keeps per slot.
 #pragma once
 
@@ -13,9 +13,10 @@
 
 namespace polyfloe::dynamics {
 
-// A slot's sort key: the body's cell and the body.
+// A slot's sort key: the body's cell and its id; and the body (its index).
 struct SlotKey {
   std::uint64_t key = 0;
+  BodyId id = 0;
   int body = 0;
 };
 
@@ -36,9 +37,9 @@ struct SlotState {
   double omega = 0.0;                 // [rad/s]
 };
 
-// The order of the slots: which body each slot holds, sorted by (key, body), the key a body's cell at its position
+// The order of the slots: which body each slot holds, sorted by (key, id), the key a body's cell at its position
 // (geometry::space_key: cells of cell() numbered tile by tile). The order is a function of the current positions
-// alone (restarts reproduce it); it is re-sorted by insertion from the last order, O(N) while floes keep their
+// and the ids alone, not of the bodies' indices (restarts reproduce it); it is re-sorted by insertion from the last order, O(N) while floes keep their
 // neighbours.
 class SlotOrder {
  public:
@@ -47,8 +48,8 @@ class SlotOrder {
   void set_cell(double cell) { cell_ = cell; }
 
   // A new body takes the last slot, its key unset (above every key: the next sort places it).
-  void add(int body) {
-    slots_.push_back({~std::uint64_t{0}, body});
+  void add(int body, BodyId id) {
+    slots_.push_back({~std::uint64_t{0}, id, body});
     body_slot_.push_back(static_cast<int>(slots_.size()) - 1);
   }
   // Body i's key at `position`; whether it changed.
@@ -64,7 +65,7 @@ class SlotOrder {
   const std::vector<SlotKey>& slots() const { return slots_; }       // slot -> body
   const std::vector<int>& body_slots() const { return body_slot_; }  // body -> slot
 
-  // Sorts the slots by (key, body) where `keys_changed` (set_key said so for some body since the last sort), and
+  // Sorts the slots by (key, id) where `keys_changed` (set_key said so for some body since the last sort), and
   // returns the intervals of slots [first, last] it permuted, each holding the same bodies as before (overlapping
   // moves merged), in increasing order; slot_of() follows. Past a budget of moves (bodies crossing many others, or
   // the first sort) a full sort, reported as one interval: the order is the same either way.
@@ -72,7 +73,7 @@ class SlotOrder {
 
  private:
   double cell_ = 1.0;                       // [m]
-  std::vector<SlotKey> slots_;              // slot -> body, sorted by (key, body)
+  std::vector<SlotKey> slots_;              // slot -> body, sorted by (key, id)
   std::vector<int> body_slot_;              // body -> slot
   std::vector<std::pair<int, int>> moved_;  // what the last sort permuted
 };

@@ -197,6 +197,11 @@ void SpatialWorld::body_loads() {
                         });
 }
 
+std::span<const int> SpatialWorld::id_order() const {
+  if (by_id_.size() != id_.size()) sort_by_id(id_, by_id_);  // bodies are only ever added
+  return by_id_;
+}
+
 SpatialWorldState SpatialWorld::state() const {
   SpatialWorldState s;
   copy_members_out(s, [this](auto&& f) { state_members(*this, f); });

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <exception>
 #include <string>
 #include <type_traits>
@@ -175,6 +176,8 @@ class SpatialWorld {
   std::uint64_t step_count() const { return steps_; }
 
   BodyId id(int i) const { return id_[i]; }
+  // The bodies' indices in increasing id (the run guard's and the checkpoint signature's order, as the planar World's).
+  std::span<const int> id_order() const;
   const geometry::ConvexPolyhedron& shape(int i) const { return *shape_[i]; }
   Motion motion(int i) const { return motion_[i]; }
   double mass(int i) const { return mass_[i]; }                       // [kg]
@@ -267,6 +270,7 @@ class SpatialWorld {
   std::vector<double> inv_mass_;
   // cold data
   std::vector<BodyId> id_;
+  mutable std::vector<int> by_id_;  // id_order(), listed when first asked for after add_body
   std::unordered_map<BodyId, int> index_;
   std::vector<std::shared_ptr<const geometry::ConvexPolyhedron>> shape_;
   std::vector<double> mass_, radius_;

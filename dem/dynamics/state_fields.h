@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -133,18 +134,33 @@ bool finite_row(const T& row) {
   return true;
 }
 
-// Checks of a state's per-body arrays, by its field list: every one has a row per body (`bodies_or_none` ones may
-// be empty) and, with `finite`, only finite values. `problem` is the first failure ("velocity has 1 entries for 2
-// bodies", "position of body 7 is not finite"), empty when none.
-class BodyRowCheck {
- public:
-  explicit BodyRowCheck(bool finite) : finite_(finite) {}
-  const std::string& problem() const { return problem_; }
-
+// A visitor of the per-body fields only: the others are passed over (the groups entered). Its subclass gives
+// bodies() and bodies_or_none().
+struct BodyFieldVisitor {
   template <class T>
   void attribute(const char*, const T&) {}
   template <class T>
   void count(const char*, const char*, const T&, double) {}
+  template <class T>
+  void rows(const char*, const std::vector<T>&) {}
+  template <class E>
+  void history(const std::vector<E>&) {}
+  template <class F>
+  void group(const char*, F&& fields) {
+    fields();
+  }
+  template <class T, class F>
+  void optional_group(const char*, const T&, F&&) {}
+};
+
+// Checks of a state's per-body arrays, by its field list: every one has a row per body (`bodies_or_none` ones may
+// be empty) and, with `finite`, only finite values. `problem` is the first failure ("velocity has 1 entries for 2
+// bodies", "position of body 7 is not finite"), empty when none.
+class BodyRowCheck : public BodyFieldVisitor {
+ public:
+  explicit BodyRowCheck(bool finite) : finite_(finite) {}
+  const std::string& problem() const { return problem_; }
+
   template <class T>
   void bodies(const char* name, const std::vector<T>& rows) {
     if (ids_ == nullptr) {  // the first per-body field: the ids
@@ -160,16 +176,6 @@ class BodyRowCheck {
   void bodies_or_none(const char* name, const std::vector<T>& rows) {
     check(name, rows, true);
   }
-  template <class T>
-  void rows(const char*, const std::vector<T>&) {}
-  template <class E>
-  void history(const std::vector<E>&) {}
-  template <class F>
-  void group(const char*, F&& fields) {
-    fields();
-  }
-  template <class T, class F>
-  void optional_group(const char*, const T&, F&&) {}
 
  private:
   template <class T>
@@ -199,6 +205,38 @@ std::string body_row_problem(const State& state, bool finite) {
   BodyRowCheck check(finite);
   visit_fields(check, state);
   return check.problem();
+}
+
+// Reorders every per-body field of a state (the `bodies` ones, and the `bodies_or_none` ones that are not empty):
+// row k becomes row from[k] of before. The planar World's state() lists its bodies in id order with it, and its
+// restore() takes a state's rows into the order the World stores its bodies in. Every field must have a row per body.
+class BodyRowGather : public BodyFieldVisitor {
+ public:
+  explicit BodyRowGather(std::span<const int> from) : from_(from) {}
+
+  template <class T>
+  void bodies(const char*, std::vector<T>& rows) {
+    gather(rows);
+  }
+  template <class T>
+  void bodies_or_none(const char*, std::vector<T>& rows) {
+    if (!rows.empty()) gather(rows);
+  }
+
+ private:
+  template <class T>
+  void gather(std::vector<T>& rows) {
+    std::vector<T> out(from_.size());
+    for (std::size_t k = 0; k < from_.size(); ++k) out[k] = rows[static_cast<std::size_t>(from_[k])];
+    rows = std::move(out);
+  }
+  std::span<const int> from_;
+};
+
+template <class State>
+void gather_body_rows(State& state, std::span<const int> from) {
+  BodyRowGather gather(from);
+  visit_fields(gather, state);
 }
 
 }  // namespace polyfloe::dynamics

@@ -44,7 +44,8 @@ int World::add_body(const BodyDesc& d) {
                   : bodies_.dynamic_count > 0      ? 0.2 * bodies_.dynamic_radius_sum / bodies_.dynamic_count
                                                    : 1.0);
   lists_.invalidate();  // rebuilt at the next evaluation
-  order_.add(i);
+  order_.add(i, d.id);
+  by_id_ready_ = false;
   slot_static_.push_back(slot_static_of(i, vert_begin_[i]));
   slot_dynamic_.push_back(bodies_.is_dynamic[i]);
   boxes_.emplace_back();
@@ -64,6 +65,14 @@ SlotStatic World::slot_static_of(int i, int vert_begin) const {
 }
 
 int World::index_of(BodyId id) const { return bodies_.index_of(id); }
+
+std::span<const int> World::id_order() const {
+  if (!by_id_ready_) {
+    sort_by_id(bodies_.id, by_id_);
+    by_id_ready_ = true;
+  }
+  return by_id_;
+}
 
 void World::set_velocity(int i, const Vec2& v, double omega) {
   if (bodies_.motion[i] == Motion::fixed) return;
@@ -98,7 +107,12 @@ const StepReport& World::step(double dt) {
   return report_;
 }
 
-void World::compute_forces(double dt) { evaluate_forces(dt, false); }
+void World::compute_forces(double dt) {
+  // The slots sorted (and the shapes drawn where they lie) first, as every step's evaluation has them: the order of
+  // the contact sums then does not depend on the order the bodies were added in.
+  update_shapes();
+  evaluate_forces(dt, false);
+}
 
 void World::evaluate_forces(double dt, bool shapes) {
   using clock = std::chrono::steady_clock;
@@ -203,9 +217,10 @@ DriftBodies World::drift_bodies() const {
           .max_quad_points = bodies_.max_quad_points};
 }
 
+// The sums over the bodies run in id order: their bits do not depend on where the bodies are stored.
 double World::kinetic_energy() const {
   double e = 0.0;
-  for (std::size_t i = 0; i < size(); ++i)
+  for (const int i : id_order())
     if (bodies_.is_dynamic[i])
       e += 0.5 * bodies_.mass[i] * bodies_.vel[i].squaredNorm() +
            0.5 * bodies_.inertia[i] * bodies_.omega[i] * bodies_.omega[i];
@@ -214,14 +229,14 @@ double World::kinetic_energy() const {
 
 Vec2 World::linear_momentum() const {
   Vec2 p{0.0, 0.0};
-  for (std::size_t i = 0; i < size(); ++i)
+  for (const int i : id_order())
     if (bodies_.is_dynamic[i]) p += bodies_.mass[i] * bodies_.vel[i];
   return p;
 }
 
 double World::angular_momentum() const {
   double l = 0.0;
-  for (std::size_t i = 0; i < size(); ++i)
+  for (const int i : id_order())
     if (bodies_.is_dynamic[i])
       l += bodies_.mass[i] * geometry::cross(bodies_.pos[i], bodies_.vel[i]) + bodies_.inertia[i] * bodies_.omega[i];
   return l;
@@ -275,19 +290,28 @@ WorldState World::state() const {
   s.lin_torque = drift_.linear_torque();
   s.contact_history = cache_.entries();
   if (bonds_) s.bonds = bonds_->state();
+  gather_body_rows(s, id_order());
   return s;
 }
 
-void World::restore(const WorldState& s) {
+void World::restore(const WorldState& state) {
   const std::size_t n = size();
   auto bad = [](const std::string& what) { throw std::invalid_argument("world state: " + what); };
-  if (s.ids.size() != n) bad("it has " + std::to_string(s.ids.size()) + " bodies, this world has " + std::to_string(n));
-  for (std::size_t i = 0; i < n; ++i)
-    if (s.ids[i] != bodies_.id[i])
-      bad("body " + std::to_string(i) + " has id " + std::to_string(s.ids[i]) + ", this world's has id " +
-          std::to_string(bodies_.id[i]));
+  if (state.ids.size() != n)
+    bad("it has " + std::to_string(state.ids.size()) + " bodies, this world has " + std::to_string(n));
   // every per-body array a row per body (the drift model's may be empty)
-  if (const std::string problem = body_row_problem(s, false); !problem.empty()) bad(problem);
+  if (const std::string problem = body_row_problem(state, false); !problem.empty()) bad(problem);
+  // Its rows in the order this World stores its bodies: the row of body i's id.
+  std::vector<int> from(n, -1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int i = bodies_.index_of(state.ids[k]);
+    if (i < 0) bad("it has a body of id " + std::to_string(state.ids[k]) + ", this world has none");
+    if (from[static_cast<std::size_t>(i)] >= 0)
+      bad("it lists the body of id " + std::to_string(state.ids[k]) + " twice");
+    from[static_cast<std::size_t>(i)] = static_cast<int>(k);
+  }
+  WorldState s = state;
+  gather_body_rows(s, from);
   if (s.lin_force.size() != s.lin_torque.size() || (!s.lin_force.empty() && s.drift_load.size() != n))
     bad("the linear drift model does not match the drift loads");
   if (s.bonds.has_value() != bonds_.has_value())

@@ -144,6 +144,9 @@ class World {
   // --- cold data ---
   BodyId id(int i) const { return bodies_.id[i]; }
   int index_of(BodyId id) const;  // -1 if absent
+  // The bodies' indices in increasing id: the order of every output, diagnostic sum and checkpoint, whatever order
+  // the bodies are stored in (indices are where a body is stored; anything kept from one step to the next uses ids).
+  std::span<const int> id_order() const;
   const geometry::ConvexPolygon& shape(int i) const { return *bodies_.shape[i]; }
   double thickness(int i) const { return bodies_.thickness[i]; }  // [m]
   double draft(int i) const { return bodies_.draft[i]; }          // floating draft h rho_ice / rho_w, at most h [m]
@@ -199,9 +202,10 @@ class World {
   // How often the broad phase's neighbour lists were rebuilt (a diagnostic of the skin; see WorldSettings).
   std::uint64_t neighbour_list_builds() const { return lists_.builds(); }
 
-  // The state a checkpoint needs (see WorldState), and its restoration into a World built from the same scene.
-  // restore() throws std::invalid_argument, naming the first mismatch, when the bodies (ids, order) or the bonds
-  // differ, or an array has the wrong size or a non-finite value.
+  // The state a checkpoint needs (see WorldState), its bodies in id order, and its restoration into a World built
+  // from the same scene (its rows in any order of the ids). restore() throws std::invalid_argument, naming the
+  // first mismatch, when the bodies (their ids) or the bonds differ, or an array has the wrong size or a non-finite
+  // value.
   WorldState state() const;
   void restore(const WorldState& s);
 
@@ -279,6 +283,8 @@ class World {
   std::vector<geometry::Aabb> boxes_;  // world-frame bounding boxes, by slot
   // scratch
   int threads_ = 1;
+  mutable std::vector<int> by_id_;  // id_order(), listed when first asked for after a change
+  mutable bool by_id_ready_ = false;
   mutable std::vector<ContactRecord> contacts_;  // listed on demand (contacts())
   mutable bool contacts_ready_ = true;
   std::size_t contact_count_ = 0;

@@ -67,7 +67,7 @@ struct Hdf5Writer::Impl {
   Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum, angular_momentum;
   std::vector<Dataset> extra;
   // loads on walls and plates
-  std::vector<int> boundary;  // indices of the fixed and kinematic bodies
+  std::vector<std::uint64_t> boundary;  // ids of the fixed and kinematic bodies, increasing
   Dataset boundary_force;
   // bonds (a World with a BondSet)
   Dataset intact_faces, intact_points, face_intact, point_intact, max_tension, max_shear;
@@ -103,14 +103,14 @@ struct Hdf5Writer::Impl {
   // floes/: what does not change (ids, thickness, mass, inertia, motion, the body-frame polygons, the XDMF
   // topology), and the per-body data the frames need.
   void write_floes(hdf5::Group& root, const dynamics::World& world, double water_density) {
-    const auto n = static_cast<int>(bodies);
     ids.resize(bodies);
     centre_z.resize(bodies);
     std::vector<double> thickness(bodies), mass(bodies), inertia(bodies), xy;
     std::vector<std::int8_t> motion(bodies);
     offsets.assign(1, 0);
-    for (int i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(i);
+    const std::span<const int> order = world.id_order();  // every per-body row in id order
+    for (std::size_t k = 0; k < bodies; ++k) {
+      const int i = order[k];
       ids[k] = world.id(i);
       thickness[k] = world.thickness(i);
       mass[k] = world.mass(i);
@@ -184,14 +184,11 @@ struct Hdf5Writer::Impl {
 
   // The force on each fixed or kinematic body (walls, plates), where there are any.
   void create_boundary_series(const dynamics::World& world) {
-    const auto n = static_cast<int>(bodies);
     auto& diag = diagnostics;
-    for (int i = 0; i < n; ++i)
-      if (world.motion(i) != dynamics::Motion::dynamic) boundary.push_back(i);
+    for (const int i : world.id_order())
+      if (world.motion(i) != dynamics::Motion::dynamic) boundary.push_back(world.id(i));
     if (!boundary.empty()) {
-      std::vector<std::uint64_t> bids;
-      for (int i : boundary) bids.push_back(world.id(i));
-      units(diag.write_dataset<std::uint64_t>("boundary_ids", bids), "1",
+      units(diag.write_dataset<std::uint64_t>("boundary_ids", boundary), "1",
             "ids of the fixed and kinematic bodies (walls, plates), in the order of boundary_force");
       boundary_force = series(diag, "boundary_force", DType::f64, {boundary.size(), 2}, kSeriesChunk, "N",
                               "force of the ice (contacts, bonds) on each fixed or kinematic body");
@@ -284,53 +281,57 @@ struct Hdf5Writer::Impl {
       throw IoError(file.path().string() + ": the world has " + std::to_string(world.size()) +
                     " bodies, the file was started with " + std::to_string(bodies));
     }
-    const auto n = static_cast<int>(bodies);
-    for (int i = 0; i < n; ++i) {
-      if (world.id(i) != ids[static_cast<std::size_t>(i)]) {
-        throw IoError(file.path().string() + ": body " + std::to_string(i) + " has id " + std::to_string(world.id(i)) +
-                      ", the file was started with " + std::to_string(ids[static_cast<std::size_t>(i)]));
+    const std::span<const int> order = world.id_order();
+    for (std::size_t k = 0; k < bodies; ++k) {
+      if (world.id(order[k]) != ids[k]) {
+        throw IoError(file.path().string() + ": the world's body " + std::to_string(k) + " in id order has id " +
+                      std::to_string(world.id(order[k])) + ", the file was started with " + std::to_string(ids[k]));
       }
     }
   }
 
   // state/: positions, orientations, velocities and the polygons where they are.
+  // (row k: the body k-th in id order)
   void append_state(const dynamics::World& world) {
+    const std::span<const int> order = world.id_order();
+    auto at = [&order](auto span, std::size_t k) { return span[static_cast<std::size_t>(order[k])]; };
     const auto pos = world.positions();
     const auto yaw = world.yaws();
     const auto vel = world.velocities();
     const auto omega = world.angular_velocities();
     row3.assign(3 * bodies, 0.0);
     for (std::size_t k = 0; k < bodies; ++k) {
-      row3[3 * k] = pos[k].x();
-      row3[3 * k + 1] = pos[k].y();
+      row3[3 * k] = at(pos, k).x();
+      row3[3 * k + 1] = at(pos, k).y();
       row3[3 * k + 2] = centre_z[k];
     }
     position.append_rows<double>(row3, 1);
     row4.assign(4 * bodies, 0.0);
     for (std::size_t k = 0; k < bodies; ++k) {
-      row4[4 * k] = std::cos(0.5 * yaw[k]);
-      row4[4 * k + 3] = std::sin(0.5 * yaw[k]);
+      row4[4 * k] = std::cos(0.5 * at(yaw, k));
+      row4[4 * k + 3] = std::sin(0.5 * at(yaw, k));
     }
     orientation.append_rows<double>(row4, 1);
     for (std::size_t k = 0; k < bodies; ++k) {
-      row3[3 * k] = vel[k].x();
-      row3[3 * k + 1] = vel[k].y();
+      row3[3 * k] = at(vel, k).x();
+      row3[3 * k + 1] = at(vel, k).y();
       row3[3 * k + 2] = 0.0;
     }
     velocity.append_rows<double>(row3, 1);
     for (std::size_t k = 0; k < bodies; ++k) {
       row3[3 * k] = 0.0;
       row3[3 * k + 1] = 0.0;
-      row3[3 * k + 2] = omega[k];
+      row3[3 * k + 2] = at(omega, k);
     }
     angular_velocity.append_rows<double>(row3, 1);
     row_xy.resize(body_xy.size());
     for (std::size_t k = 0; k < bodies; ++k) {
-      const double c = std::cos(yaw[k]), sn = std::sin(yaw[k]);
+      const geometry::Vec2 p = at(pos, k);
+      const double c = std::cos(at(yaw, k)), sn = std::sin(at(yaw, k));
       for (auto v = static_cast<std::size_t>(offsets[k]); v < static_cast<std::size_t>(offsets[k + 1]); ++v) {
         const double bx = body_xy[2 * v], by = body_xy[2 * v + 1];
-        row_xy[2 * v] = static_cast<float>(pos[k].x() + c * bx - sn * by);
-        row_xy[2 * v + 1] = static_cast<float>(pos[k].y() + sn * bx + c * by);
+        row_xy[2 * v] = static_cast<float>(p.x() + c * bx - sn * by);
+        row_xy[2 * v + 1] = static_cast<float>(p.y() + sn * bx + c * by);
       }
     }
     vertices_xy.append_rows<float>(row_xy, 1);
@@ -338,11 +339,10 @@ struct Hdf5Writer::Impl {
 
   // diagnostics/: speeds, deepest overlap, contacts, energy, momenta, the driver's series, the boundary forces.
   void append_diagnostics(const dynamics::World& world, std::span<const double> extra_values) {
-    const auto n = static_cast<int>(bodies);
     const auto vel = world.velocities();
     double speed_max = 0.0, speed_sum = 0.0;
     std::size_t dynamic = 0;
-    for (int i = 0; i < n; ++i) {
+    for (const int i : world.id_order()) {
       if (world.motion(i) != dynamics::Motion::dynamic) continue;
       const double s = vel[static_cast<std::size_t>(i)].norm();
       speed_max = std::max(speed_max, s);
@@ -368,9 +368,10 @@ struct Hdf5Writer::Impl {
     for (std::size_t k = 0; k < extra.size(); ++k) extra[k].append_rows<double>({&extra_values[k], 1}, 1);
     if (!boundary.empty()) {
       row3.clear();
-      for (int i : boundary) {
-        row3.push_back(world.forces()[static_cast<std::size_t>(i)].x());
-        row3.push_back(world.forces()[static_cast<std::size_t>(i)].y());
+      for (const std::uint64_t id : boundary) {
+        const geometry::Vec2& f = world.forces()[static_cast<std::size_t>(world.index_of(id))];
+        row3.push_back(f.x());
+        row3.push_back(f.y());
       }
       boundary_force.append_rows<double>(row3, 1);
     }

@@ -55,7 +55,7 @@ double top_of(const dynamics::World& world, int i, double water_density) {
 }
 
 // The mean normal and |shear| stress over each element's intact bond points, on all its cells (a body of n
-// vertices has n + 2 cells, in body order: floes_polydata).
+// vertices has n + 2 cells, in id order: floes_polydata).
 void add_bond_stress(vtkPolyData& data, const dynamics::World& world, const bonds::BondSet& b, vtkIdType n_cells) {
   const int bodies = static_cast<int>(world.size());
   std::vector<double> sigma(static_cast<std::size_t>(bodies), 0.0), tau(sigma.size(), 0.0), count(sigma.size(), 0.0);
@@ -73,7 +73,7 @@ void add_bond_stress(vtkPolyData& data, const dynamics::World& world, const bond
   auto normal = make_array<vtkDoubleArray>("bond_normal_stress", 1, n_cells);
   auto shear = make_array<vtkDoubleArray>("bond_shear_stress", 1, n_cells);
   vtkIdType c = 0;
-  for (int i = 0; i < bodies; ++i) {
+  for (const int i : world.id_order()) {
     const auto k = static_cast<std::size_t>(i);
     const double sn = count[k] > 0 ? sigma[k] / count[k] : 0.0, st = count[k] > 0 ? tau[k] / count[k] : 0.0;
     for (std::size_t j = 0; j < world.world_vertices(i).size() + 2; ++j, ++c) {
@@ -115,12 +115,11 @@ void add_prism(std::span<const Vec2> ring, double bottom, double top, vtkIdType 
   }
 }
 
-// Every body as a prism floating at its equilibrium draft: points are the bottom ring then the top ring of each
-// body; cells are the top polygon, the bottom polygon (reversed) and one quad per edge, all facing outward.
+// Every body as a prism floating at its equilibrium draft, in id order: points are the bottom ring then the top ring
+// of each body; cells are the top polygon, the bottom polygon (reversed) and one quad per edge, all facing outward.
 vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double water_density) {
-  const int bodies = static_cast<int>(world.size());
   vtkIdType n_points = 0, n_cells = 0, n_conn = 0;
-  for (int i = 0; i < bodies; ++i) {
+  for (int i = 0; i < static_cast<int>(world.size()); ++i) {
     const auto n = static_cast<vtkIdType>(world.world_vertices(i).size());
     n_points += 2 * n;
     n_cells += n + 2;
@@ -145,7 +144,7 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
   double* xyz = coords->GetPointer(0);
   vtkIdType p0 = 0, cell = 0, k = 0;
   offsets->SetValue(0, 0);
-  for (int i = 0; i < bodies; ++i) {
+  for (const int i : world.id_order()) {
     const auto ring = world.world_vertices(i);
     const auto n = static_cast<vtkIdType>(ring.size());
     const double h = world.thickness(i);  // [m]

@@ -1,6 +1,7 @@
 #include "run/channel_monitor.h"
 
 #include <algorithm>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -16,8 +17,11 @@ ChannelMonitor::ChannelMonitor(const scene::ChannelSpec& spec, const dynamics::W
       jam_speed_(spec.jam_speed),
       last_time_(world.time()),
       last_flow_time_(world.time()) {
-  through_.resize(world.size());
-  for (std::size_t i = 0; i < world.size(); ++i) through_[i] = world.positions()[i].x() >= gate_ ? 1 : 0;
+  // (by body in id order, as the checkpoint keeps it)
+  const std::span<const int> order = world.id_order();
+  through_.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+    through_[k] = world.positions()[static_cast<std::size_t>(order[k])].x() >= gate_ ? 1 : 0;
 }
 
 void ChannelMonitor::restore(const State& s) {
@@ -39,13 +43,15 @@ ChannelSample ChannelMonitor::sample(const dynamics::World& world) {
   int funnel_floes = 0;
   const auto pos = world.positions();
   const auto vel = world.velocities();
-  for (std::size_t i = 0; i < world.size(); ++i) {
-    const int b = static_cast<int>(i);
+  const std::span<const int> order = world.id_order();
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const int b = order[k];
+    const auto i = static_cast<std::size_t>(b);
     if (world.motion(b) != dynamics::Motion::dynamic) continue;
     const double area = world.shape(b).area();
     const std::uint8_t now = pos[i].x() >= gate_ ? 1 : 0;
-    crossed += (static_cast<int>(now) - static_cast<int>(through_[i])) * area;
-    through_[i] = now;
+    crossed += (static_cast<int>(now) - static_cast<int>(through_[k])) * area;
+    through_[k] = now;
     if (!now) s.upstream_area += area;
     if (!now && pos[i].x() >= funnel_start_) {
       s.funnel_area += area;

@@ -39,7 +39,7 @@ class ChannelMonitor {
 
   // What carries from one sample to the next (checkpoints).
   struct State {
-    std::vector<std::uint8_t> through;
+    std::vector<std::uint8_t> through;                           // per body in id order
     double last_time = 0.0, last_flow_time = 0.0, passed = 0.0;  // [s], [s], [m^2]
     std::optional<double> stalled_since, jam_time;               // [s]
   };
@@ -49,7 +49,7 @@ class ChannelMonitor {
 
  private:
   double funnel_start_, gate_, strait_end_, y_lo_, y_hi_, jam_window_, jam_speed_;
-  std::vector<std::uint8_t> through_;  // per body: centroid at or past the gate at the last sample
+  std::vector<std::uint8_t> through_;  // per body in id order: centroid at or past the gate at the last sample
   double last_time_, last_flow_time_, passed_ = 0.0;
   std::optional<double> stalled_since_;  // first sample of the current stall of the funnel's ice [s]
   std::optional<double> jam_time_;

@@ -263,8 +263,7 @@ template <class W>
 Fnv body_hash(const W& w) {
   Fnv h;
   h.add(static_cast<std::uint64_t>(w.size()));
-  for (std::size_t k = 0; k < w.size(); ++k) {
-    const int i = static_cast<int>(k);
+  for (const int i : w.id_order()) {
     h.add(w.id(i));
     h.add(static_cast<int>(w.motion(i)));
     if constexpr (std::is_same_v<W, dynamics::World>) h.add(w.thickness(i));

@@ -101,7 +101,7 @@ void check_stability(const W& w, const dynamics::StepReport& r, double dt, doubl
   // reference speed (an instability that grows in many bodies at once, before any one reaches the speed limit).
   double energy = 0.0, worst = 0.0;
   int worst_body = 0;
-  for (int i = 0; i < static_cast<int>(w.size()); ++i) {
+  for (const int i : w.id_order()) {
     const BodyMotion m = body_motion(w, i);
     if (!m.finite) {
       why << "body " << w.id(i) << " has a non-finite state (NaN or Inf)";

@@ -59,7 +59,7 @@ void VelocityGrid::sample(const dynamics::World& world) {
   const auto vel = world.velocities();
   const auto om = world.angular_velocities();
   const double inv = 1.0 / grid_.cell;
-  for (int b = 0; b < static_cast<int>(world.size()); ++b) {
+  for (const int b : world.id_order()) {  // (each cell's sum in id order)
     if (world.motion(b) != dynamics::Motion::dynamic) continue;
     const auto ring = world.world_vertices(b);
     const std::size_t n = ring.size();

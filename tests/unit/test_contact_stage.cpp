@@ -41,7 +41,7 @@ struct Floes {
     const geometry::ConvexPolygon sq = geometry::ConvexPolygon::rectangle(kSide, kSide);
     const int i = static_cast<int>(slots.size());
     const double m = kDensity * sq.area() * kThickness;
-    slots.push_back({0, i});
+    slots.push_back({0, static_cast<dynamics::BodyId>(100 + i), i});
     body_slot.push_back(i);
     statics.push_back({m, sq.equivalent_radius(), sq.equivalent_radius(), static_cast<dynamics::BodyId>(100 + i), i,
                        static_cast<int>(world_xy.size()), static_cast<int>(sq.size())});

@@ -20,6 +20,7 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -205,7 +206,7 @@ TEST(IoWriters, ThreeFramesWrittenToVtkAndHdf5ReadBackAsTheWorldWasAtEachFrame) 
     ASSERT_TRUE(time);
     EXPECT_DOUBLE_EQ(time->GetTuple1(0), frames[f].time);
     vtkIdType c = 0;
-    for (int i = 0; i < n; ++i) {
+    for (const int i : world->id_order()) {  // the bodies in id order (its ids run against the indices)
       const int m = world->shape(i).size();
       for (int k = 0; k < m + 2; ++k, ++c) {
         EXPECT_EQ(static_cast<std::uint64_t>(id->GetTuple1(c)), world->id(i));
@@ -220,7 +221,7 @@ TEST(IoWriters, ThreeFramesWrittenToVtkAndHdf5ReadBackAsTheWorldWasAtEachFrame) 
   {
     auto pd = read_vtp(dir.path() / "vtk" / "floes" / "floes_000002.vtp");
     vtkIdType c = 0, p = 0;
-    for (int i = 0; i < n; ++i) {
+    for (const int i : world->id_order()) {
       const int m = world->shape(i).size();
       const double h = world->thickness(i);
       const double draft = h * kIce / kWater;
@@ -310,31 +311,37 @@ TEST(IoWriters, ThreeFramesWrittenToVtkAndHdf5ReadBackAsTheWorldWasAtEachFrame) 
   EXPECT_EQ(h5_dims(file, "/diagnostics/linear_momentum"), (std::vector<hsize_t>{3, 2}));
   const auto t = h5_read<double>(file, "/time", H5T_NATIVE_DOUBLE);
   for (int f = 0; f < 3; ++f) EXPECT_DOUBLE_EQ(t[f], frames[f].time);
+  // Every per-body row in id order: row k is body order[k] (the ids 7, 3, 100 of bodies 0, 1, 2: rows 1, 0, 2).
+  const auto order = world->id_order();
+  std::vector<std::size_t> row(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) row[static_cast<std::size_t>(order[k])] = static_cast<std::size_t>(k);
+  ASSERT_EQ(row, (std::vector<std::size_t>{1, 0, 2}));
   const auto ids = h5_read<std::uint64_t>(file, "/floes/id", H5T_NATIVE_UINT64);
   ASSERT_EQ(ids.size(), N);
-  for (int i = 0; i < n; ++i) EXPECT_EQ(ids[i], world->id(i));
+  EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+  for (int i = 0; i < n; ++i) EXPECT_EQ(ids[row[i]], world->id(i));
   const auto offsets = h5_read<std::int64_t>(file, "/floes/polygon_offsets", H5T_NATIVE_INT64);
   ASSERT_EQ(offsets.size(), N + 1);
   EXPECT_EQ(offsets[0], 0);
-  for (int i = 0; i < n; ++i) EXPECT_EQ(offsets[i + 1] - offsets[i], world->shape(i).size());
+  for (int i = 0; i < n; ++i) EXPECT_EQ(offsets[row[i] + 1] - offsets[row[i]], world->shape(i).size());
   EXPECT_EQ(h5_dims(file, "/floes/polygon_xy"), (std::vector<hsize_t>{static_cast<hsize_t>(offsets[n]), 2}));
   const auto xy = h5_read<double>(file, "/floes/polygon_xy", H5T_NATIVE_DOUBLE);
-  EXPECT_DOUBLE_EQ(xy[2 * offsets[1]], world->shape(1).vertices()[0].x());
+  EXPECT_DOUBLE_EQ(xy[2 * offsets[row[1]]], world->shape(1).vertices()[0].x());
   const auto motion = h5_read<int>(file, "/floes/motion", H5T_NATIVE_INT);
-  EXPECT_EQ(motion[2], 1);
-  EXPECT_EQ(motion[0], 0);
+  EXPECT_EQ(motion[row[2]], 1);
+  EXPECT_EQ(motion[row[0]], 0);
   const auto q = h5_read<double>(file, "/state/orientation", H5T_NATIVE_DOUBLE);
   for (std::size_t k = 0; k < q.size(); k += 4) {
     EXPECT_NEAR(q[k] * q[k] + q[k + 1] * q[k + 1] + q[k + 2] * q[k + 2] + q[k + 3] * q[k + 3], 1.0, 1e-12);
   }
   // Last frame, body 1: yaw and position.
-  const std::size_t last = 2 * N * 4 + 4;
+  const std::size_t last = 2 * N * 4 + 4 * row[1];
   EXPECT_NEAR(2.0 * std::atan2(q[last + 3], q[last]), world->yaws()[1], 1e-12);
   const auto pos = h5_read<double>(file, "/state/position", H5T_NATIVE_DOUBLE);
-  EXPECT_DOUBLE_EQ(pos[2 * N * 3 + 3], world->positions()[1].x());
-  EXPECT_NEAR(pos[2 * N * 3 + 5], 0.5 * 2.0 - 2.0 * kIce / kWater, 1e-12);
+  EXPECT_DOUBLE_EQ(pos[2 * N * 3 + 3 * row[1]], world->positions()[1].x());
+  EXPECT_NEAR(pos[2 * N * 3 + 3 * row[1] + 2], 0.5 * 2.0 - 2.0 * kIce / kWater, 1e-12);
   const auto w = h5_read<double>(file, "/state/angular_velocity", H5T_NATIVE_DOUBLE);
-  EXPECT_DOUBLE_EQ(w[2 * N * 3 + 2], world->angular_velocities()[0]);
+  EXPECT_DOUBLE_EQ(w[2 * N * 3 + 3 * row[0] + 2], world->angular_velocities()[0]);
   const auto contact_count = h5_read<std::int64_t>(file, "/diagnostics/contact_count", H5T_NATIVE_INT64);
   for (int f = 0; f < 3; ++f) EXPECT_EQ(contact_count[f], static_cast<std::int64_t>(frames[f].contacts));
   const auto ke = h5_read<double>(file, "/diagnostics/kinetic_energy", H5T_NATIVE_DOUBLE);

@@ -42,7 +42,7 @@ struct Field {
       pos.emplace_back(2.3 * (i % side) + jitter(rng), 2.3 * (i / side) + jitter(rng));
       yaw.push_back(jitter(rng));
       reach.push_back(std::sqrt(2.0));
-      slots.push_back({0, i});
+      slots.push_back({0, static_cast<polyfloe::dynamics::BodyId>(i + 1), i});
       body_slot.push_back(i);
       SlotStatic s;
       s.mass = s.radius = s.equivalent_radius = 1.0;

@@ -1,5 +1,5 @@
 // The order of the contact stage's slots (dynamics/slots.h SlotOrder) on its own: after any motion the slots are
-// sorted by (key, body) exactly as a full sort would, slot_of and body_at are inverse, and the intervals the sort
+// sorted by (key, id) exactly as a full sort would (ids here run against the indices, so a tie by index would fail), slot_of and body_at are inverse, and the intervals the sort
 // reports cover every slot that changed body, each holding the same bodies as before; no changed key, no sort.
 #include <gtest/gtest.h>
 
@@ -20,6 +20,9 @@ namespace {
 
 constexpr double kCell = 4.0;  // [m]
 
+// Body i's id: decreasing in i, so that the order by id is not the order by index.
+dynamics::BodyId id_of(int i) { return static_cast<dynamics::BodyId>(3 * (10000 - i)); }
+
 // Keys at `pos`, then sorted; checks the order and the intervals against the slots before.
 std::vector<std::pair<int, int>> moved;  // what the last sort_and_check's sort reported
 
@@ -33,9 +36,9 @@ void sort_and_check(SlotOrder& order, const std::vector<Vec2>& pos, bool expect_
   // The order a full sort gives.
   std::vector<SlotKey> want(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
-    want[static_cast<std::size_t>(i)] = {geometry::space_key(pos[static_cast<std::size_t>(i)], kCell), i};
+    want[static_cast<std::size_t>(i)] = {geometry::space_key(pos[static_cast<std::size_t>(i)], kCell), id_of(i), i};
   std::sort(want.begin(), want.end(),
-            [](const SlotKey& a, const SlotKey& b) { return a.key != b.key ? a.key < b.key : a.body < b.body; });
+            [](const SlotKey& a, const SlotKey& b) { return a.key != b.key ? a.key < b.key : a.id < b.id; });
   for (int k = 0; k < n; ++k) {
     ASSERT_EQ(order.body_at(k), want[static_cast<std::size_t>(k)].body) << "slot " << k;
     ASSERT_EQ(order.slot_of(order.body_at(k)), k);
@@ -72,7 +75,7 @@ TEST(SlotOrder, SlotsFollowTheBodiesAsTheyMoveInTheOrderAFullSortGives) {
   order.set_cell(kCell);
   std::vector<Vec2> pos;
   for (int i = 0; i < n; ++i) {
-    order.add(i);
+    order.add(i, id_of(i));
     pos.emplace_back(u(rng), u(rng));
   }
   sort_and_check(order, pos, true);  // the first sort: every key new
@@ -90,7 +93,7 @@ TEST(SlotOrder, ABodyCrossingTheFieldMovesOneIntervalAndAReversalSortsAllAtOnce)
   order.set_cell(kCell);
   std::vector<Vec2> pos;
   for (int i = 0; i < n; ++i) {
-    order.add(i);
+    order.add(i, id_of(i));
     pos.emplace_back(8.0 * (i % 30) + 1.0, 8.0 * (i / 30) + 1.0);  // a lattice, one body per cell
   }
   sort_and_check(order, pos, true);
