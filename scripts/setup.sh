@@ -19,6 +19,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   libcli11-dev  # the command line (dem/app)
   nlohmann-json3-dev  # the study drivers' JSON (tests/bench)
+  libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev  # MPI domain decomposition (dem/domain; tests/mpi)
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
   openfoam  # v1912: the of_cases (OpenFOAM flows that drive the ice; tests/validation/test_strait_openfoam.cpp)
   openfoam-examples  # its tutorials: users' kinds of case (of_cases/tutorials, test_openfoam_tutorials.cpp)
