@@ -69,9 +69,9 @@ Partition::Partition(MPI_Comm comm) : comm_(comm), zoltan_(std::make_unique<Zolt
   if (!zoltan_->zz) throw std::runtime_error("Zoltan: Zoltan_Create failed");
   Zoltan_Struct* zz = zoltan_->zz;
   const std::pair<const char*, const char*> params[] = {
-      {"DEBUG_LEVEL", "0"},     {"LB_METHOD", "RCB"},      {"NUM_GID_ENTRIES", "2"}, {"NUM_LID_ENTRIES", "1"},
-      {"OBJ_WEIGHT_DIM", "1"},  {"RETURN_LISTS", "NONE"}, {"KEEP_CUTS", "1"},       {"RCB_OUTPUT_LEVEL", "0"},
-      {"IMBALANCE_TOL", "1.05"}};
+      {"DEBUG_LEVEL", "0"},     {"LB_METHOD", "RCB"},      {"NUM_GID_ENTRIES", "2"},
+      {"NUM_LID_ENTRIES", "1"}, {"OBJ_WEIGHT_DIM", "1"},   {"RETURN_LISTS", "NONE"},
+      {"KEEP_CUTS", "1"},       {"RCB_OUTPUT_LEVEL", "0"}, {"IMBALANCE_TOL", "1.05"}};
   for (const auto& [name, value] : params) check(Zoltan_Set_Param(zz, name, value), name);
   void* data = &items_;
   check(Zoltan_Set_Num_Obj_Fn(zz, count_items, data), "Zoltan_Set_Num_Obj_Fn");

@@ -63,8 +63,7 @@ std::vector<double> weight_per_rank(const std::vector<PartitionItem>& items, con
 
 void expect_balanced(const std::vector<double>& w) {
   const double mean = std::accumulate(w.begin(), w.end(), 0.0) / static_cast<double>(w.size());
-  for (std::size_t r = 0; r < w.size(); ++r)
-    EXPECT_NEAR(w[r], mean, 0.10 * mean) << "rank " << r << " of " << w.size();
+  for (std::size_t r = 0; r < w.size(); ++r) EXPECT_NEAR(w[r], mean, 0.10 * mean) << "rank " << r << " of " << w.size();
 }
 
 }  // namespace
