@@ -99,6 +99,17 @@ void BondSet::add_corner_pair(int a, int b, std::span<const int> faces) {
   adjacency_[static_cast<std::size_t>(b)].emplace_back(a, -1 - k);
 }
 
+void BondSet::renumber(std::span<const int> to) {
+  for (int& a : face_a_) a = to[static_cast<std::size_t>(a)];
+  for (int& b : face_b_) b = to[static_cast<std::size_t>(b)];
+  std::vector<std::vector<std::pair<int, int>>> adjacency(std::max(adjacency_.size(), to.size()));
+  for (std::size_t e = 0; e < adjacency_.size(); ++e) {
+    for (auto& [other, face] : adjacency_[e]) other = to[static_cast<std::size_t>(other)];
+    adjacency[static_cast<std::size_t>(to[e])] = std::move(adjacency_[e]);
+  }
+  adjacency_ = std::move(adjacency);
+}
+
 bool BondSet::bonded(int a, int b) const {
   if (a < 0 || static_cast<std::size_t>(a) >= adjacency_.size()) return false;
   for (const auto& [other, face] : adjacency_[static_cast<std::size_t>(a)]) {

@@ -98,6 +98,9 @@ class BondSet {
 
   // True while an intact face joins elements a and b (indices), or they are a corner pair whose corner is whole.
   bool bonded(int a, int b) const;
+  // The elements were numbered anew: element e is element to[e] from now on (a permutation of the elements'
+  // indices, as many as the World's bodies). Faces, points and their state keep their order.
+  void renumber(std::span<const int> to);
 
   // A lower bound of the largest stable time step of the bonded elements: 2 / omega_max, with omega_max^2 bounded
   // per element by Gershgorin's theorem on the stiffness of its intact points, 2 (sum of the point stiffnesses) / m

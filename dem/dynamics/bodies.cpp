@@ -72,4 +72,35 @@ int Bodies::add(const BodyDesc& d, double water_density, forcing::Quadrature rul
   return i;
 }
 
+void Bodies::permute(std::span<const int> from) {
+  gather_rows(pos, from);
+  gather_rows(vel, from);
+  gather_rows(force, from);
+  gather_rows(ext_force, from);
+  gather_rows(vel_eval, from);
+  gather_rows(yaw, from);
+  gather_rows(omega, from);
+  gather_rows(torque, from);
+  gather_rows(ext_torque, from);
+  gather_rows(omega_eval, from);
+  gather_rows(inv_mass, from);
+  gather_rows(inv_inertia, from);
+  gather_rows(id, from);
+  gather_rows(shape, from);
+  gather_rows(thickness, from);
+  gather_rows(mass, from);
+  gather_rows(inertia, from);
+  gather_rows(plan_area, from);
+  gather_rows(radius, from);
+  gather_rows(draft, from);
+  gather_rows(side_area, from);
+  gather_rows(equivalent_radius, from);
+  gather_rows(reach, from);
+  gather_rows(motion, from);
+  gather_rows(is_dynamic, from);
+  gather_ranges(quad_off, from, quad_lx, quad_ly, quad_weight);
+  gather_ranges(vert_off, from, local_xy);
+  for (std::size_t k = 0; k < id.size(); ++k) index[id[k]] = static_cast<int>(k);
+}
+
 }  // namespace polyfloe::dynamics

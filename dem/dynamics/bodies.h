@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -55,6 +56,9 @@ struct Bodies {
   // draft in water of `water_density` [kg/m^3] (a body denser than water fully submerged), with the drag
   // quadrature points of `rule`; returns its index. Throws std::invalid_argument naming the body.
   int add(const BodyDesc& d, double water_density, forcing::Quadrature rule);
+  // Stores the bodies anew: body k becomes body from[k] of before (a permutation of 0..size()-1). The sums above
+  // keep their values.
+  void permute(std::span<const int> from);
 };
 
 }  // namespace polyfloe::dynamics

@@ -15,8 +15,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "dynamics/body.h"
 #include "forcing/drift.h"
 #include "geometry/vec2.h"
 
@@ -109,6 +111,24 @@ class DriftModel {
   }
   // A body was added or the bodies' loads were replaced from outside: no inverse is kept.
   void forget_inverses() { inverse_dt_ = 0.0; }
+
+  // The World stored its n bodies anew: body k is body from[k] of before. (Arrays not yet sized for every body are
+  // first sized with no load and no linear model, which is what the ones missing mean.)
+  void permute(std::span<const int> from) {
+    const std::size_t n = from.size();
+    if (!load_.empty() && load_.size() < n) load_.resize(n);
+    if (!lin_force_.empty() && lin_force_.size() < n) {
+      lin_force_.resize(n, Vec2{0.0, 0.0});
+      lin_torque_.resize(n, 0.0);
+    }
+    gather_rows(load_, from);
+    gather_rows(lin_force_, from);
+    gather_rows(lin_torque_, from);
+    if (inverse_.size() == n)
+      gather_rows(inverse_, from);
+    else
+      forget_inverses();
+  }
 
   // --- state (WorldState's drift_load, lin_force, lin_torque) ---
   const std::vector<forcing::DriftLoad>& loads() const { return load_; }

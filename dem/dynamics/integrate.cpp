@@ -159,7 +159,31 @@ void World::sort_slots(bool keys_changed) {
     }
     for (int k = first; k <= last; ++k)
       if (bodies_.motion[order_.body_at(k)] == Motion::fixed) update_shape(order_.body_at(k));
+    slots_moved_since_store_ += static_cast<std::size_t>(last - first + 1);
   }
+  if (settings_.store_in_space_order && 8 * slots_moved_since_store_ >= size() && !moved.empty()) store_in_slot_order();
+}
+
+void World::store_in_slot_order() {
+  const std::size_t n = size();
+  std::vector<int> from(n), to(n);  // body k is body from[k] of before; body i becomes body to[i]
+  for (std::size_t k = 0; k < n; ++k) {
+    from[k] = order_.body_at(static_cast<int>(k));
+    to[static_cast<std::size_t>(from[k])] = static_cast<int>(k);
+  }
+  bodies_.permute(from);
+  drift_.permute(from);
+  gather_rows(vert_begin_, from);  // (world_xy_ stays: its blocks are in slot order already)
+  gather_rows(rotation_, from);
+  if (bond_mass_.size() == n) gather_rows(bond_mass_, from);
+  if (bonds_) bonds_->renumber(to);
+  order_.bodies_in_slot_order();
+  for (std::size_t k = 0; k < n; ++k) slot_static_[k].body = static_cast<int>(k);
+  lists_.invalidate();      // their per-body records: rebuilt at the next evaluation
+  by_id_ready_ = false;     // id_order() anew
+  contacts_ready_ = false;  // the records listed anew, with the new indices
+  slots_moved_since_store_ = 0;
+  ++reorders_;
 }
 
 void World::update_shapes() {

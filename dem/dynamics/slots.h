@@ -60,6 +60,13 @@ class SlotOrder {
     slot.key = key;
     return changed;
   }
+  // The World stored its bodies in slot order (body k is the one slot k held): slot k holds body k.
+  void bodies_in_slot_order() {
+    for (std::size_t k = 0; k < slots_.size(); ++k) {
+      slots_[k].body = static_cast<int>(k);
+      body_slot_[k] = static_cast<int>(k);
+    }
+  }
   int slot_of(int body) const { return body_slot_[static_cast<std::size_t>(body)]; }
   int body_at(int slot) const { return slots_[static_cast<std::size_t>(slot)].body; }
   const std::vector<SlotKey>& slots() const { return slots_; }       // slot -> body

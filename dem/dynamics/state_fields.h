@@ -26,6 +26,7 @@
 
 #include <Eigen/Geometry>
 
+#include "dynamics/body.h"
 #include "forcing/drift.h"
 #include "geometry/polyhedron.h"
 #include "geometry/vec2.h"
@@ -226,9 +227,7 @@ class BodyRowGather : public BodyFieldVisitor {
  private:
   template <class T>
   void gather(std::vector<T>& rows) {
-    std::vector<T> out(from_.size());
-    for (std::size_t k = 0; k < from_.size(); ++k) out[k] = rows[static_cast<std::size_t>(from_[k])];
-    rows = std::move(out);
+    gather_rows(rows, from_);
   }
   std::span<const int> from_;
 };

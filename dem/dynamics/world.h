@@ -46,6 +46,12 @@ struct WorldSettings {
   // Skin of the broad phase's neighbour lists [m]; 0 = automatic (0.2 x the mean equivalent radius of the dynamic
   // bodies). A speed knob only: the contacts found, their order and so every result are the same for any value.
   double broad_phase_skin = 0.0;
+  // Store the bodies in space order (the slots' order), re-stored as they drift apart from it: the per-body passes
+  // of the step then read and write memory in the order of space, however the bodies were added (a field in random
+  // order runs as fast as one in lattice order). A speed knob only: every result is the same, bitwise. Indices then
+  // change between steps (the World's id_order() and index_of() follow; anything kept from step to step uses ids).
+  // Off, indices are the order of add_body() for good. The scene's worlds (scene::build_world) store in space order.
+  bool store_in_space_order = false;
 };
 
 // Everything that carries from one step to the next and is not rebuilt from the scene: what a checkpoint stores
@@ -201,6 +207,8 @@ class World {
   const StepProfile& profile() const { return profile_; }
   // How often the broad phase's neighbour lists were rebuilt (a diagnostic of the skin; see WorldSettings).
   std::uint64_t neighbour_list_builds() const { return lists_.builds(); }
+  // How often the bodies were stored anew in space order (WorldSettings::store_in_space_order).
+  std::uint64_t body_reorders() const { return reorders_; }
 
   // The state a checkpoint needs (see WorldState), its bodies in id order, and its restoration into a World built
   // from the same scene (its rows in any order of the ids). restore() throws std::invalid_argument, naming the
@@ -243,6 +251,11 @@ class World {
   // The slots in order of their keys (set by kick_and_move() or set_slot_keys(); `keys_changed`: whether any
   // changed since the last sort).
   void sort_slots(bool keys_changed);
+  // With store_in_space_order: the bodies stored in slot order (body k the one in slot k), once the slots moved
+  // since the last time cover an eighth of the bodies (at once on the first sort).
+  void store_in_slot_order();
+  std::size_t slots_moved_since_store_ = 0;
+  std::uint64_t reorders_ = 0;
   bool set_slot_keys();  // every body's slot key at its position; whether any changed
   // Body i's packed slot data, its vertices starting at `vert_begin` in world_xy_.
   SlotStatic slot_static_of(int i, int vert_begin) const;

@@ -2,8 +2,11 @@
 // The order is private: these tests check that nothing a user sees depends on it.
 //   - The same jammed pack added in two different body orders (lattice order and shuffled) gives, per body id,
 //     bitwise the same poses, velocities, forces and torques and the same contacts (by id pair) at every step
-//     checked, the same diagnostic sums and the same state (its rows in id order); one's state restored into a
-//     world built in the other order continues bitwise.
+//     checked, the same diagnostic sums and the same state (its rows in id order), also when one of them stores its
+//     bodies in space order (WorldSettings::store_in_space_order: its indices change as it re-stores them); one's
+//     state restored into a world built in the other order continues bitwise.
+//   - A frozen sheet of 8 x 8 squares pulled apart (bonds that break) gives bitwise the same poses, velocities, intact
+//     faces and contacts, added in lattice order and kept there, or added shuffled and stored in space order.
 //   - Bodies that jump across the whole field in one step (every body crosses most others: the full-sort path)
 //     keep world-frame vertices that follow them (1e-12 m) and get exactly the contacts a brute-force narrow phase
 //     over every pair finds.
@@ -29,6 +32,7 @@
 #include <utility>
 #include <vector>
 
+#include "bond_support.h"
 #include "contact/narrow_phase_planar.h"
 #include "dense_pack.h"
 #include "dynamics/world.h"
@@ -92,7 +96,10 @@ TEST(WorldOrder, TheOrderBodiesAreAddedInChangesNoBitOfTheDynamicsTheStateOrTheS
   std::vector<dynamics::BodyDesc> shuffled = pack.bodies;
   std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937_64(5));
 
-  dynamics::World a(tsupport::no_drift()), b(tsupport::no_drift());
+  // b also stores its bodies in space order, re-stored as they move: its indices change, its results must not.
+  dynamics::WorldSettings sorting = tsupport::no_drift();
+  sorting.store_in_space_order = true;
+  dynamics::World a(tsupport::no_drift()), b(sorting);
   for (const auto& d : pack.bodies) a.add_body(d);
   for (const auto& d : shuffled) b.add_body(d);
   auto same_bits = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof(x)) == 0; };
@@ -122,6 +129,11 @@ TEST(WorldOrder, TheOrderBodiesAreAddedInChangesNoBitOfTheDynamicsTheStateOrTheS
     if (HasFatalFailure()) return;
   }
   expect_vertices_follow_bodies(b);
+  EXPECT_EQ(a.body_reorders(), 0u);
+  EXPECT_GE(b.body_reorders(), 1u);
+  int moved = 0;  // bodies no longer where they were added
+  for (std::size_t k = 0; k < shuffled.size(); ++k) moved += b.id(static_cast<int>(k)) != shuffled[k].id;
+  EXPECT_GT(moved, 300);
   // The state lists the bodies in id order, whatever the order they were added in: the same rows, bit for bit.
   const dynamics::WorldState sa = a.state(), sb = b.state();
   ASSERT_TRUE(std::is_sorted(sa.ids.begin(), sa.ids.end()));
@@ -132,7 +144,7 @@ TEST(WorldOrder, TheOrderBodiesAreAddedInChangesNoBitOfTheDynamicsTheStateOrTheS
   }
   EXPECT_EQ(sa.contact_history.size(), sb.contact_history.size());
   // A's state restored into a world whose bodies were added in the shuffled order continues as a does, bitwise.
-  dynamics::World c(tsupport::no_drift());
+  dynamics::World c(sorting);
   for (const auto& d : shuffled) c.add_body(d);
   c.restore(sa);
   for (int step = 301; step <= 400; ++step) {
@@ -140,6 +152,71 @@ TEST(WorldOrder, TheOrderBodiesAreAddedInChangesNoBitOfTheDynamicsTheStateOrTheS
     c.step(dt);
   }
   expect_same(a, c, 400);
+}
+
+TEST(WorldOrder, AFrozenSheetBreaksAlikeStoredInTheOrderItWasAddedOrInSpaceOrder) {
+  constexpr int kSide = 8;
+  constexpr double kS = 5.0;  // element side [m]
+  const auto square = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::rectangle(kS, kS));
+  std::vector<dynamics::BodyDesc> lattice;
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  for (int k = 0; k < kSide * kSide; ++k) {
+    const int i = k % kSide, j = k / kSide;
+    lattice.push_back({.id = static_cast<dynamics::BodyId>(1000 - k),  // ids against the lattice order, too
+                       .shape = square,
+                       .position = {i * kS, j * kS},
+                       .velocity = {(i < kSide / 2 ? -0.4 : 0.4) + jitter(rng), jitter(rng)},
+                       .angular_velocity = 0.1 * jitter(rng)});
+  }
+  std::vector<dynamics::BodyDesc> shuffled = lattice;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937_64(4));
+  auto build = [&](const std::vector<dynamics::BodyDesc>& bodies, bool store) {
+    dynamics::WorldSettings ws = tsupport::no_drift();
+    ws.store_in_space_order = store;
+    auto w = std::make_unique<dynamics::World>(ws);
+    for (const auto& d : bodies) w->add_body(d);
+    bonds::BondSet set(tsupport::bond::material(2e5));  // weak: the pull breaks the middle column of faces
+    auto face = [&](int ka, int kb, Vec2 p0, Vec2 p1) {
+      const auto& A = lattice[static_cast<std::size_t>(ka)];
+      const auto& B = lattice[static_cast<std::size_t>(kb)];
+      set.add_face({.a = w->index_of(A.id),
+                    .b = w->index_of(B.id),
+                    .id_a = A.id,
+                    .id_b = B.id,
+                    .p0 = p0,
+                    .p1 = p1,
+                    .thickness = 1.0,
+                    .centre_a = A.position,
+                    .centre_b = B.position});
+    };
+    for (int k = 0; k < kSide * kSide; ++k) {
+      const int i = k % kSide, j = k / kSide;
+      if (i + 1 < kSide) face(k, k + 1, {(i + 0.5) * kS, (j - 0.5) * kS}, {(i + 0.5) * kS, (j + 0.5) * kS});
+      if (j + 1 < kSide) face(k, k + kSide, {(i - 0.5) * kS, (j + 0.5) * kS}, {(i + 0.5) * kS, (j + 0.5) * kS});
+    }
+    w->set_bonds(std::move(set));
+    return w;
+  };
+  auto a = build(lattice, false), b = build(shuffled, true);
+  const double dt = tsupport::bond::safe_dt(*a);
+  for (int step = 1; step <= 600; ++step) {
+    a->step(dt);
+    b->step(dt);
+  }
+  const std::size_t faces = a->bonds()->faces();
+  EXPECT_LT(a->bonds()->intact_faces(), faces) << "the pull must break some faces";
+  EXPECT_GT(a->bonds()->intact_faces(), 0u);
+  EXPECT_EQ(a->bonds()->intact_faces(), b->bonds()->intact_faces());
+  for (std::size_t f = 0; f < faces; ++f) EXPECT_EQ(a->bonds()->face_intact(f), b->bonds()->face_intact(f)) << f;
+  EXPECT_GE(b->body_reorders(), 1u);
+  EXPECT_EQ(contact_ids(*a), contact_ids(*b));
+  for (int i = 0; i < static_cast<int>(a->size()); ++i) {
+    const int j = b->index_of(a->id(i));
+    ASSERT_EQ(std::memcmp(&a->positions()[i], &b->positions()[j], sizeof(Vec2)), 0) << "body " << a->id(i);
+    ASSERT_EQ(std::memcmp(&a->velocities()[i], &b->velocities()[j], sizeof(Vec2)), 0) << "body " << a->id(i);
+    ASSERT_EQ(a->yaws()[i], b->yaws()[j]) << "body " << a->id(i);
+  }
 }
 
 TEST(WorldOrder, BodiesThatJumpAcrossTheFieldKeepTheirShapesAndContacts) {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bond_support.h"
@@ -109,15 +110,19 @@ Modulus sheet_modulus(double side, double cell, const char* elements) {
   const scene::Scene sc = scene::parse_scene(text, "modulus.yaml", {});
   dynamics::World w = scene::build_world(sc);
   const double dt = scene::time_step(sc, w);
-  std::vector<Vec2> x0(w.positions().begin(), w.positions().end());
+  // Each element's start by id (the World stores its bodies anew as it steps: indices change, ids do not); the two
+  // plates are the first two bodies built.
+  std::vector<std::pair<dynamics::BodyId, Vec2>> x0;
+  for (std::size_t i = 2; i < w.size(); ++i) x0.emplace_back(w.id(static_cast<int>(i)), w.positions()[i]);
+  const dynamics::BodyId left = w.id(0), right = w.id(1);
   const double duration = 0.02 * side;  // 2e-4 strain at 0.02 m/s closing
   while (w.time() < duration) w.step(dt);
-  // Plate force: the two plates are the first two bodies.
-  const double force = 0.5 * (-w.forces()[0].x() + w.forces()[1].x());
+  const double force = 0.5 * (-w.forces()[static_cast<std::size_t>(w.index_of(left))].x() +
+                              w.forces()[static_cast<std::size_t>(w.index_of(right))].x());
   double sx = 0, su = 0, sxx = 0, sxu = 0, n = 0;
-  for (std::size_t i = 2; i < w.size(); ++i) {
-    if (x0[i].x() < 0.2 * side || x0[i].x() > 0.8 * side) continue;
-    const double x = x0[i].x(), u = w.positions()[i].x() - x0[i].x();
+  for (const auto& [id, start] : x0) {
+    if (start.x() < 0.2 * side || start.x() > 0.8 * side) continue;
+    const double x = start.x(), u = w.positions()[static_cast<std::size_t>(w.index_of(id))].x() - start.x();
     sx += x, su += u, sxx += x * x, sxu += x * u, n += 1;
   }
   const double slope = (n * sxu - sx * su) / (n * sxx - sx * sx);  // du/dx < 0 in compression
