@@ -1,4 +1,5 @@
 #include "dynamics/bodies.h"
+#include "dynamics/rows.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,6 +52,7 @@ int Bodies::add(const BodyDesc& d, double water_density, forcing::Quadrature rul
   radius.push_back(dyn ? d.shape->equivalent_radius() : contact::kInfinite);
   motion.push_back(d.motion);
   is_dynamic.push_back(dyn ? 1 : 0);
+  ghost.push_back(0);
   if (dyn) dynamic_mass += mass.back();
   pos.push_back(d.position);
   yaw.push_back(d.yaw);
@@ -73,33 +75,9 @@ int Bodies::add(const BodyDesc& d, double water_density, forcing::Quadrature rul
 }
 
 void Bodies::permute(std::span<const int> from) {
-  gather_rows(pos, from);
-  gather_rows(vel, from);
-  gather_rows(force, from);
-  gather_rows(ext_force, from);
-  gather_rows(vel_eval, from);
-  gather_rows(yaw, from);
-  gather_rows(omega, from);
-  gather_rows(torque, from);
-  gather_rows(ext_torque, from);
-  gather_rows(omega_eval, from);
-  gather_rows(inv_mass, from);
-  gather_rows(inv_inertia, from);
-  gather_rows(id, from);
-  gather_rows(shape, from);
-  gather_rows(thickness, from);
-  gather_rows(mass, from);
-  gather_rows(inertia, from);
-  gather_rows(plan_area, from);
-  gather_rows(radius, from);
-  gather_rows(draft, from);
-  gather_rows(side_area, from);
-  gather_rows(equivalent_radius, from);
-  gather_rows(reach, from);
-  gather_rows(motion, from);
-  gather_rows(is_dynamic, from);
-  gather_ranges(quad_off, from, quad_lx, quad_ly, quad_weight);
-  gather_ranges(vert_off, from, local_xy);
+  for_each_array(
+      *this, [&](auto& rows) { gather_rows(rows, from); },
+      [&](std::vector<int>& off, auto&... values) { gather_ranges(off, from, values...); });
   for (std::size_t k = 0; k < id.size(); ++k) index[id[k]] = static_cast<int>(k);
 }
 

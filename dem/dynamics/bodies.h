@@ -35,6 +35,8 @@ struct Bodies {
   std::vector<double> reach;                                // circumradius about the centroid [m]
   std::vector<Motion> motion;
   std::vector<std::uint8_t> is_dynamic;
+  // 1: a ghost, the copy of a body another World owns (a domain decomposition's; World::set_ghost), 0 by add().
+  std::vector<std::uint8_t> ghost;
   std::vector<int> quad_off{0};          // body i's bottom/top quadrature points: quad_off[i] .. quad_off[i+1]-1
   std::vector<double> quad_lx, quad_ly;  // body-frame lever of each point from the centroid [m]
   std::vector<double> quad_weight;       // area carried [m^2]
@@ -59,6 +61,42 @@ struct Bodies {
   // Stores the bodies anew: body k becomes body from[k] of before (a permutation of 0..size()-1). The sums above
   // keep their values.
   void permute(std::span<const int> from);
+
+  // Every per-body array: rows(a) for each array of one row per body, ranges(off, a...) for each offset table with
+  // the arrays it cuts into rows. The one list of them that permute() (and anything that moves bodies) walks: a
+  // member added to Bodies must be listed here, or counted among the others below (the build fails otherwise).
+  template <class Self, class Rows, class Ranges>
+  static void for_each_array(Self& b, Rows&& rows, Ranges&& ranges) {
+    rows(b.pos), rows(b.vel), rows(b.force), rows(b.ext_force), rows(b.yaw), rows(b.omega), rows(b.torque);
+    rows(b.ext_torque), rows(b.inv_mass), rows(b.inv_inertia), rows(b.vel_eval), rows(b.omega_eval);
+    rows(b.id), rows(b.shape), rows(b.thickness), rows(b.mass), rows(b.inertia), rows(b.plan_area), rows(b.radius);
+    rows(b.draft), rows(b.side_area), rows(b.equivalent_radius), rows(b.reach), rows(b.motion), rows(b.is_dynamic);
+    rows(b.ghost);
+    ranges(b.quad_off, b.quad_lx, b.quad_ly, b.quad_weight);
+    ranges(b.vert_off, b.local_xy);
+  }
+  static constexpr std::size_t kRowArrays = 26, kRangeMembers = 6;
+  // The members that are not per-body arrays: the id -> index map and the sums.
+  static constexpr std::size_t kOtherMembers = 6;
 };
+
+namespace detail {
+// The number of members of an aggregate (by how many values it can be brace-initialised from).
+struct AnyMember {
+  template <class T>
+  operator T() const;
+};
+template <class T, class... A>
+constexpr std::size_t member_count() {
+  if constexpr (requires { T{A{}..., AnyMember{}}; })
+    return member_count<T, A..., AnyMember>();
+  else
+    return sizeof...(A);
+}
+}  // namespace detail
+
+static_assert(detail::member_count<Bodies>() == Bodies::kRowArrays + Bodies::kRangeMembers + Bodies::kOtherMembers,
+              "a member was added to Bodies: list it in Bodies::for_each_array (or among the other members) and "
+              "update the counts there");
 
 }  // namespace polyfloe::dynamics

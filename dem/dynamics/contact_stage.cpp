@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "contact/narrow_phase_gjk2d.h"
@@ -136,6 +138,7 @@ struct PairDirection {
   if (c.in.statics[a].id > c.in.statics[b].id) std::swap(a, b);
   const SlotStatic& A = c.in.statics[a];
   const SlotStatic& B = c.in.statics[b];
+  if (A.ghost) return;                                           // evaluated by the World that owns a
   if (c.in.bonds && c.in.bonds->bonded(A.body, B.body)) return;  // frozen together: the bond carries the load
   contact::PlanarContact g;
   double load = 0.0;  // |g.load| (foundation)
@@ -201,8 +204,8 @@ void PlanarContactStage::find_pairs(const SlotView& view, const contact::Contact
   lists.candidate_pairs(view, law, narrow_phase == PlanarNarrowPhase::exact, threads, pairs_);
 }
 
-const ContactSum::Totals& PlanarContactStage::evaluate(const PlanarContactInput& in, const contact::ContactLaw& law,
-                                                       NeighbourLists& lists, contact::ContactCache& cache) {
+void PlanarContactStage::evaluate(const PlanarContactInput& in, const contact::ContactLaw& law, NeighbourLists& lists,
+                                  const contact::ContactCache& cache) {
   // Every candidate pair evaluated apart (in parallel: the cache is only read here), then added up in the broad
   // phase's order (ContactSum: in parallel, each slot in pair order), so nothing depends on the threads.
   const std::size_t np = pairs_.size();
@@ -229,6 +232,54 @@ const ContactSum::Totals& PlanarContactStage::evaluate(const PlanarContactInput&
     const auto q = static_cast<std::size_t>(p);
     evaluate_pair(c, pairs_[q], results_[q], hit_[q]);
   }
+}
+
+void PlanarContactStage::outgoing(std::span<const SlotStatic> statics, std::vector<PairForce>& out) const {
+  for (std::size_t p = 0; p < results_.size(); ++p) {
+    const PairResult& r = results_[p];
+    if (hit_[p] == 1 && statics[r.b].ghost) out.push_back({statics[r.a].id, statics[r.b].id, r.f, r.tau_b});
+  }
+}
+
+void PlanarContactStage::take_incoming(std::span<const SlotStatic> statics, std::span<const PairForce> in) {
+  if (in.empty()) return;
+  incoming_.assign(in.begin(), in.end());
+  auto less = [](const PairForce& x, const PairForce& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
+  std::sort(incoming_.begin(), incoming_.end(), less);
+  std::size_t taken = 0;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    int a = pairs_[p].a, b = pairs_[p].b;
+    if (statics[a].id > statics[b].id) std::swap(a, b);
+    if (!statics[a].ghost || statics[b].ghost) continue;
+    const PairForce key{statics[a].id, statics[b].id};
+    const auto it = std::lower_bound(incoming_.begin(), incoming_.end(), key, less);
+    if (it == incoming_.end() || it->a != key.a || it->b != key.b) continue;
+    PairResult& r = results_[p];
+    r = PairResult{};
+    r.hit = true;
+    r.a = a;
+    r.b = b;
+    r.f = it->f;
+    r.tau_b = it->tau_b;  // (a's share stays with a's owner: tau_a = 0 on this ghost)
+    hit_[p] = 2;
+    ++taken;
+  }
+  if (taken != incoming_.size()) {
+    // Name one force that found no pair: a pair the other World saw touch is not a candidate here.
+    for (const PairForce& f : incoming_) {
+      bool found = false;
+      for (std::size_t p = 0; p < pairs_.size() && !found; ++p)
+        found = hit_[p] == 2 && statics[results_[p].a].id == f.a && statics[results_[p].b].id == f.b;
+      if (!found)
+        throw std::logic_error("a contact force between bodies " + std::to_string(f.a) + " and " + std::to_string(f.b) +
+                               " came from the World that owns the first, but the pair is not a candidate here "
+                               "with the first a ghost and the second owned: the ghosts do not cover the pairs");
+    }
+  }
+}
+
+const ContactSum::Totals& PlanarContactStage::sum(const PlanarContactInput& in, NeighbourLists& lists,
+                                                  contact::ContactCache& cache) {
   const ContactSum::Totals& t =
       sum_.sum({pairs_, results_, hit_, in.statics, in.overlap_limit}, in.threads, lists, cache);
   history_gen_ = cache.generation();
@@ -237,8 +288,8 @@ const ContactSum::Totals& PlanarContactStage::evaluate(const PlanarContactInput&
 
 void PlanarContactStage::list_contacts(std::span<const SlotStatic> statics, std::vector<ContactRecord>& out) const {
   out.clear();
-  for (const PairResult& r : results_)
-    if (r.hit)
+  for (std::size_t p = 0; p < results_.size(); ++p)
+    if (const PairResult& r = results_[p]; hit_[p] == 1)
       out.push_back(
           {statics[r.a].body, statics[r.b].body, r.g, r.cf.normal, r.cf.tangential, r.cf.sliding, r.f, r.energy});
 }

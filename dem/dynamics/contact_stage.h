@@ -40,6 +40,14 @@ struct ContactRecord {
   Vec2 force_on_b() const { return force; }
 };
 
+// A contact force evaluated by the World that owns a pair's lower-id body a, for the World that owns its other body
+// b (a domain decomposition's: World::set_ghost): what b's sum adds, in its place among b's other contacts.
+struct PairForce {
+  BodyId a = 0, b = 0;  // ids, a < b
+  Vec2 f{0.0, 0.0};     // on b [N]
+  double tau_b = 0.0;   // on b [N m]
+};
+
 // What one contact evaluation reads of the bodies: the slots' records and state (slot order; the velocities as
 // evaluated, the step's prediction), their world-frame vertices, and by body the inverse masses the foundation
 // model's damping step reads.
@@ -63,11 +71,19 @@ class PlanarContactStage {
                   NeighbourLists& lists);
 
   // The narrow phase and the contact law on every pair of the last find_pairs(), in parallel (each listed pair's
-  // kept overlap topology is updated in `lists`; last step's histories are read from `cache`), then their sum
-  // (ContactSum::sum: per-slot forces and torques, each touching pair's history stored in `cache`): the counts
-  // and extremes of the sum.
-  const ContactSum::Totals& evaluate(const PlanarContactInput& in, const contact::ContactLaw& law,
-                                     NeighbourLists& lists, contact::ContactCache& cache);
+  // kept overlap topology is updated in `lists`; last step's histories are read from `cache`). A pair whose
+  // lower-id body is a ghost is left to the World that owns that body (no contact until take_incoming()).
+  void evaluate(const PlanarContactInput& in, const contact::ContactLaw& law, NeighbourLists& lists,
+                const contact::ContactCache& cache);
+  // Of the last evaluate(): the forces of the touching pairs whose higher-id body is a ghost, for the Worlds that
+  // own those bodies, appended to `out` (in pair order).
+  void outgoing(std::span<const SlotStatic> statics, std::vector<PairForce>& out) const;
+  // The forces other Worlds evaluated for this World's bodies: each must be a candidate pair here, its lower-id
+  // body a ghost and the other one not (std::logic_error otherwise: the ghosts do not cover the pairs).
+  void take_incoming(std::span<const SlotStatic> statics, std::span<const PairForce> in);
+  // The sum of the last evaluate() (ContactSum::sum: per-slot forces and torques, each touching pair's history
+  // stored in `cache`): the counts and extremes of the sum, of the pairs evaluated here.
+  const ContactSum::Totals& sum(const PlanarContactInput& in, NeighbourLists& lists, contact::ContactCache& cache);
 
   std::size_t candidates() const { return pairs_.size(); }                  // of the last find_pairs()
   const Vec2& slot_force(int slot) const { return sum_.slot_force(slot); }  // [N], of the last evaluate()
@@ -83,7 +99,8 @@ class PlanarContactStage {
  private:
   std::vector<contact::CandidatePair> pairs_;
   std::vector<PairResult> results_;
-  std::vector<std::uint8_t> hit_;  // results_[p].hit, packed: what the sum's first pass reads
+  std::vector<std::uint8_t> hit_;  // results_[p].hit, packed (2: a force from elsewhere): the sum's first pass reads it
+  std::vector<PairForce> incoming_;  // scratch: take_incoming()'s, sorted by ids
   ContactSum sum_;
   std::vector<CacheHint> hints_;
   // The contact cache's generation the last sum stored under: where it is still the cache's and the lists stand,

@@ -38,7 +38,7 @@ const ContactSum::Totals& ContactSum::sum(const Input& in, int threads, Neighbou
     blk.hits = 0;
     for (std::size_t p = blk.first_pair; p < blk.end_pair; ++p) {
       if (!in.hit[p]) continue;
-      ++blk.hits;
+      blk.hits += in.hit[p] == 1;  // (a force from elsewhere is not stored)
       if (pairs[p].b >= blk.end_slot) blk.spilled.push_back(p);
     }
   }
@@ -90,6 +90,11 @@ void ContactSum::sum_block(const Input& in, int c, std::span<contact::ContactCac
     const PairResult& r = in.results[p];
     blk.failures += r.fallback;
     if (!r.hit) continue;
+    if (in.hit[p] == 2) {  // evaluated by the World that owns its lower-id body: its force only
+      add(r, pairs[p].a);
+      if (pairs[p].b < hi) add(r, pairs[p].b);
+      continue;
+    }
     blk.reused += r.reused;
     const SlotStatic& A = in.statics[r.a];
     const SlotStatic& B = in.statics[r.b];

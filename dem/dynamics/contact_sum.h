@@ -44,8 +44,8 @@ struct PairResult {
 class ContactSum {
  public:
   // What the sum reads: the candidate pairs (sorted by their lower slot a) with their results and hit flags (the
-  // results' `hit`, packed), the slots' records, and the overlap limit as a fraction of the smaller equivalent
-  // radius (DeepestOverlap).
+  // results' `hit`, packed: 1 evaluated here, 2 a force evaluated by another World, which adds only its force), the
+  // slots' records, and the overlap limit as a fraction of the smaller equivalent radius (DeepestOverlap).
   struct Input {
     std::span<const contact::CandidatePair> pairs;
     std::span<const PairResult> results;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "dynamics/body.h"
+#include "dynamics/rows.h"
 #include "forcing/drift.h"
 #include "geometry/vec2.h"
 

@@ -7,6 +7,7 @@
 #include "dynamics/parallel.h"
 #include "geometry/space_order.h"
 #include "dynamics/world.h"
+#include "dynamics/rows.h"
 
 namespace polyfloe::dynamics {
 
@@ -25,6 +26,7 @@ bool World::kick_and_move(double dt) {
   POLYFLOE_OMP_FOR_ANY(threads_, changed, outrun)
   for (int ii = 0; ii < n; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
+    if (bodies_.ghost[i]) continue;  // moved by its owner (set_ghost_pose)
     Vec2 f = bodies_.force[i];
     double t = bodies_.torque[i];
     if (drift_.damped(i)) {
@@ -57,6 +59,7 @@ void World::kick_implicit(double dt) {
     MotionSummary sum;
     for (int ii = blk * kSummaryBlock, end = std::min(n, ii + kSummaryBlock); ii < end; ++ii) {
       const std::size_t i = static_cast<std::size_t>(ii);
+      if (bodies_.ghost[i]) continue;                // integrated by its owner
       const forcing::DriftLoad& d = drift_.load(i);  // and its linear model, set by compute_forces()
       if (!bodies_.is_dynamic[i] || !d.has_damping()) {
         bodies_.vel[i] += (half_dt * bodies_.inv_mass[i]) * bodies_.force[i];
@@ -95,6 +98,7 @@ void World::merge_motion_blocks() const {
 }
 
 void World::add_motion(std::size_t i, MotionSummary& s) const {
+  if (bodies_.ghost[i]) return;  // its owner's
   // A NaN or infinity anywhere in the pose or the velocity makes the sum non-finite.
   s.all_finite &= std::isfinite(bodies_.pos[i].x() + bodies_.pos[i].y() + bodies_.yaw[i] + bodies_.vel[i].x() +
                                 bodies_.vel[i].y() + bodies_.omega[i]);

@@ -29,6 +29,8 @@ struct SlotStatic {
   int body = 0;        // body index
   int vert_begin = 0;  // into the World's world-frame vertices
   int vert_count = 0;
+  std::uint8_t ghost = 0;  // a copy of a body another World owns (World::set_ghost): its pairs with lower ids are
+                           // evaluated there
 };
 
 // The state of a slot's body, gathered every force evaluation.

@@ -27,6 +27,7 @@
 #include <Eigen/Geometry>
 
 #include "dynamics/body.h"
+#include "dynamics/rows.h"
 #include "forcing/drift.h"
 #include "geometry/polyhedron.h"
 #include "geometry/vec2.h"

@@ -39,7 +39,10 @@ int World::add_body(const BodyDesc& d) {
   world_xy_.resize(static_cast<std::size_t>(bodies_.vert_off.back()));
   rotation_.emplace_back(1.0, 0.0);
   // A new body takes the last slot (its vertices go at the end of world_xy_); the next step sorts the slots.
-  if (dyn) order_.set_cell(geometry::space_order_cell(bodies_.dynamic_radius_sum / bodies_.dynamic_count));
+  if (settings_.space_order_cell > 0.0)
+    order_.set_cell(settings_.space_order_cell);
+  else if (dyn)
+    order_.set_cell(geometry::space_order_cell(bodies_.dynamic_radius_sum / bodies_.dynamic_count));
   lists_.set_skin(settings_.broad_phase_skin > 0.0 ? settings_.broad_phase_skin
                   : bodies_.dynamic_count > 0      ? 0.2 * bodies_.dynamic_radius_sum / bodies_.dynamic_count
                                                    : 1.0);
@@ -61,7 +64,8 @@ SlotStatic World::slot_static_of(int i, int vert_begin) const {
           bodies_.id[i],
           i,
           vert_begin,
-          bodies_.vert_off[i + 1] - bodies_.vert_off[i]};
+          bodies_.vert_off[i + 1] - bodies_.vert_off[i],
+          bodies_.ghost[i]};
 }
 
 int World::index_of(BodyId id) const { return bodies_.index_of(id); }
@@ -82,6 +86,31 @@ void World::set_velocity(int i, const Vec2& v, double omega) {
   motion_ready_ = false;
 }
 
+void World::set_ghost(int i, bool ghost) {
+  bodies_.ghost[i] = ghost ? 1 : 0;
+  slot_static_[static_cast<std::size_t>(order_.slot_of(i))].ghost = bodies_.ghost[i];
+  forces_ready_ = false;
+  motion_ready_ = false;
+}
+
+void World::set_ghost_pose(int i, const Vec2& position, double yaw) {
+  const auto k = static_cast<std::size_t>(i);
+  bodies_.pos[k] = position;
+  bodies_.yaw[k] = yaw;
+  ghost_keys_changed_ = order_.set_key(i, position) || ghost_keys_changed_;
+  // (the move's test against the lists' skin left ghosts out)
+  if (lists_.built_for(size()) && !lists_.within(k, position, yaw, bodies_.reach[k])) lists_.set_kick_verdict(true);
+}
+
+void World::set_ghost_prediction(int i, const Vec2& velocity, double omega) {
+  const auto k = static_cast<std::size_t>(i);
+  bodies_.vel_eval[k] = velocity;
+  bodies_.omega_eval[k] = omega;
+  slot_state_[static_cast<std::size_t>(order_.slot_of(i))] = {bodies_.pos[k], velocity, omega};
+}
+
+void World::take_pair_forces(std::span<const PairForce> in) { contact_stage_.take_incoming(slot_static_, in); }
+
 void World::set_external_load(int i, const Vec2& force, double torque) {
   bodies_.ext_force[i] = force;
   bodies_.ext_torque[i] = torque;
@@ -92,7 +121,12 @@ const StepReport& World::step(double dt) {
   using clock = std::chrono::steady_clock;
   if (!forces_ready_) compute_forces(0.0);
   auto t0 = clock::now();
-  const bool keys_changed = kick_and_move(dt);
+  bool keys_changed = kick_and_move(dt);
+  if (exchange_) {
+    ghost_keys_changed_ = false;
+    exchange_->poses(*this);
+    keys_changed = keys_changed || ghost_keys_changed_;
+  }
   auto t1 = clock::now();
   sort_slots(keys_changed);
   profile_.integrate += std::chrono::duration<double>(t1 - t0).count();
@@ -110,6 +144,7 @@ const StepReport& World::step(double dt) {
 void World::compute_forces(double dt) {
   // The slots sorted (and the shapes drawn where they lie) first, as every step's evaluation has them: the order of
   // the contact sums then does not depend on the order the bodies were added in.
+  if (exchange_) exchange_->poses(*this);
   update_shapes();
   evaluate_forces(dt, false);
 }
@@ -164,6 +199,7 @@ void World::evaluate_forces(double dt, bool shapes) {
                                                                  bodies_.omega_eval[i]};
   }
   if (refill) drift_.set_inverses_dt(dt);
+  if (exchange_) exchange_->predictions(*this);
   const auto t_pass = clock::now();
   // (a step's profile counts this pass with the shapes; compute_forces from outside, with the drift forces)
   if (shapes) profile_.shapes += std::chrono::duration<double>(t_pass - t0).count();
@@ -221,7 +257,7 @@ DriftBodies World::drift_bodies() const {
 double World::kinetic_energy() const {
   double e = 0.0;
   for (const int i : id_order())
-    if (bodies_.is_dynamic[i])
+    if (bodies_.is_dynamic[i] && !bodies_.ghost[i])
       e += 0.5 * bodies_.mass[i] * bodies_.vel[i].squaredNorm() +
            0.5 * bodies_.inertia[i] * bodies_.omega[i] * bodies_.omega[i];
   return e;
@@ -230,14 +266,14 @@ double World::kinetic_energy() const {
 Vec2 World::linear_momentum() const {
   Vec2 p{0.0, 0.0};
   for (const int i : id_order())
-    if (bodies_.is_dynamic[i]) p += bodies_.mass[i] * bodies_.vel[i];
+    if (bodies_.is_dynamic[i] && !bodies_.ghost[i]) p += bodies_.mass[i] * bodies_.vel[i];
   return p;
 }
 
 double World::angular_momentum() const {
   double l = 0.0;
   for (const int i : id_order())
-    if (bodies_.is_dynamic[i])
+    if (bodies_.is_dynamic[i] && !bodies_.ghost[i])
       l += bodies_.mass[i] * geometry::cross(bodies_.pos[i], bodies_.vel[i]) + bodies_.inertia[i] * bodies_.omega[i];
   return l;
 }
@@ -245,7 +281,7 @@ double World::angular_momentum() const {
 double World::max_speed() const {
   double v = 0.0;
   for (std::size_t i = 0; i < size(); ++i)
-    if (bodies_.is_dynamic[i]) v = std::max(v, bodies_.vel[i].norm());
+    if (bodies_.is_dynamic[i] && !bodies_.ghost[i]) v = std::max(v, bodies_.vel[i].norm());
   return v;
 }
 
@@ -360,7 +396,13 @@ void World::contact_forces(double dt) {
                               .dt = dt,
                               .overlap_limit = kOverlapLimit,
                               .threads = threads_};
-  const ContactSum::Totals& t = contact_stage_.evaluate(in, law_, lists_, cache_);
+  contact_stage_.evaluate(in, law_, lists_, cache_);
+  if (exchange_) {
+    outgoing_.clear();
+    contact_stage_.outgoing(slot_static_, outgoing_);
+    exchange_->pair_forces(*this);
+  }
+  const ContactSum::Totals& t = contact_stage_.sum(in, lists_, cache_);
   // Into the bodies' sums, in body order: each thread writes its own stretch of the bodies' forces and torques
   // (written by slot, neighbouring bodies of different blocks would share cache lines).
   const int n = static_cast<int>(size());

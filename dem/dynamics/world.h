@@ -26,6 +26,7 @@
 #include "dynamics/neighbour_lists.h"
 #include "dynamics/slots.h"
 #include "dynamics/state_fields.h"
+#include "dynamics/step_exchange.h"
 #include "dynamics/step_report.h"
 #include "forcing/drift.h"
 
@@ -52,6 +53,10 @@ struct WorldSettings {
   // change between steps (the World's id_order() and index_of() follow; anything kept from step to step uses ids).
   // Off, indices are the order of add_body() for good. The scene's worlds (scene::build_world) store in space order.
   bool store_in_space_order = false;
+  // The cell of the slots' order [m]; 0 = automatic (4 x the mean equivalent radius of the dynamic bodies). The
+  // order in which each body's contact forces are added follows it: Worlds that share the ice (ghosts, set_ghost)
+  // must share it to give the same bits.
+  double space_order_cell = 0.0;
 };
 
 // Everything that carries from one step to the next and is not rebuilt from the scene: what a checkpoint stores
@@ -172,6 +177,30 @@ class World {
   // Faces that failed in the last force evaluation.
   int bonds_failed_last() const { return bonds_failed_last_; }
 
+  // --- a domain decomposition (domain/): owned bodies and ghosts ---
+  // Marks body i a ghost (or owned again): a copy of a body another World owns, which may touch this World's own. A
+  // ghost is not integrated here: its pose and its predicted velocity come from its owner through the step's
+  // exchange (set_exchange; dynamics/step_exchange.h), and each pair whose lower-id body is a ghost is evaluated by
+  // that body's owner, whose force on the pair's other body arrives through take_pair_forces(). A ghost's force,
+  // torque and velocity here mean nothing: the sums over the bodies (kinetic_energy, ...) and the step's report
+  // leave ghosts out. Each owned body then gets, bit for bit, the force it would get in one World holding every
+  // body: its contacts are added in the order of the slots (a function of the positions and ids alone) wherever
+  // they were evaluated, provided the slots' cell is the same everywhere (WorldSettings::space_order_cell).
+  void set_ghost(int i, bool ghost);
+  bool is_ghost(int i) const { return bodies_.ghost[i] != 0; }
+  // The exchange the step calls (not owned; nullptr: none, the default).
+  void set_exchange(StepExchange* exchange) { exchange_ = exchange; }
+  // From the exchange: ghost i's pose after the move [m, rad], and its predicted velocity [m/s, rad/s].
+  void set_ghost_pose(int i, const Vec2& position, double yaw);
+  void set_ghost_prediction(int i, const Vec2& velocity, double omega);
+  // The velocity at which this step's velocity-dependent forces are evaluated (predicted at its end) [m/s, rad/s].
+  const Vec2& predicted_velocity(int i) const { return bodies_.vel_eval[i]; }
+  double predicted_omega(int i) const { return bodies_.omega_eval[i]; }
+  // The forces of the pairs evaluated here whose higher-id body is a ghost (for its owner), of the last evaluation.
+  std::span<const PairForce> outgoing_pair_forces() const { return outgoing_; }
+  // Forces other Worlds evaluated for pairs whose higher-id body this World owns (see PlanarContactStage).
+  void take_pair_forces(std::span<const PairForce> in);
+
   // --- contacts of the last force evaluation ---
   // Listed from the last evaluation when first asked for after it (not safe to call from several threads at once).
   const std::vector<ContactRecord>& contacts() const;
@@ -203,6 +232,7 @@ class World {
   double shortest_flat_contact_duration() const;
 
   const WorldSettings& settings() const { return settings_; }
+  double space_order_cell() const { return order_.cell(); }  // the slots' cell in use [m]
   const contact::ContactLaw& contact_law() const { return law_; }
   const StepProfile& profile() const { return profile_; }
   // How often the broad phase's neighbour lists were rebuilt (a diagnostic of the skin; see WorldSettings).
@@ -312,6 +342,10 @@ class World {
   DriftBodies drift_bodies() const;
   StepProfile profile_;
   std::uint64_t narrow_phase_failures_ = 0;
+  // The domain decomposition's: the step's exchange, whether a ghost's key changed in it, the forces for ghosts.
+  StepExchange* exchange_ = nullptr;
+  bool ghost_keys_changed_ = false;
+  std::vector<PairForce> outgoing_;
 };
 
 }  // namespace polyfloe::dynamics

@@ -1,5 +1,5 @@
 // The planar World's bodies (dynamics/bodies.h): what add() derives of a body against closed forms, and the bodies
-// it refuses without changing the arrays.
+// it refuses without changing the arrays, and the one list of its per-body arrays that a permutation walks.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -116,6 +116,58 @@ TEST(Bodies, ABodyRefusedNamesItselfAndLeavesTheArraysAsTheyWere) {
   d = plate(7);
   d.density = -1.0;
   refused(d, "body 7: density must be positive");
+}
+
+TEST(Bodies, EveryArrayHasARowPerBodyAndPermuteMovesEachRowWithItsBody) {
+  Bodies b;
+  for (int k = 0; k < 3; ++k) {
+    BodyDesc d = plate(static_cast<BodyId>(10 + k));
+    d.shape = std::make_shared<const geometry::ConvexPolygon>(geometry::ConvexPolygon::regular(3 + k, 1.0 + k));
+    d.position = {1.0 * k, 0.0};
+    d.motion = k == 1 ? Motion::fixed : Motion::dynamic;
+    b.add(d, 1025.0, forcing::Quadrature::degree2);
+  }
+  b.ghost[2] = 1;
+  // The list the permutation walks holds every array (the counts that the build holds against the members).
+  std::size_t rows = 0, ranges = 0;
+  Bodies::for_each_array(
+      b,
+      [&](const auto& a) {
+        ++rows;
+        EXPECT_TRUE(a.size() == 3u || a.empty()) << a.size();  // (the evaluation's are sized by the World)
+      },
+      [&](const std::vector<int>& off, const auto&... a) {
+        ranges += 1 + sizeof...(a);
+        EXPECT_EQ(off.size(), 4u);
+        const std::size_t values = static_cast<std::size_t>(off.back());
+        const std::size_t sizes[] = {a.size()...};
+        for (const std::size_t n : sizes) EXPECT_EQ(n, values);
+      });
+  EXPECT_EQ(rows, Bodies::kRowArrays);
+  EXPECT_EQ(ranges, Bodies::kRangeMembers);
+  const Bodies before = b;
+  const std::vector<int> from{2, 0, 1};
+  b.permute(from);
+  for (int k = 0; k < 3; ++k) {
+    const auto i = static_cast<std::size_t>(from[static_cast<std::size_t>(k)]);
+    const auto n = static_cast<std::size_t>(k);
+    EXPECT_EQ(b.id[n], before.id[i]);
+    EXPECT_EQ(b.index_of(b.id[n]), k);
+    EXPECT_EQ(b.pos[n], before.pos[i]);
+    EXPECT_EQ(b.mass[n], before.mass[i]);
+    EXPECT_EQ(b.motion[n], before.motion[i]);
+    EXPECT_EQ(b.ghost[n], before.ghost[i]);
+    EXPECT_EQ(b.shape[n], before.shape[i]);
+    ASSERT_EQ(b.vert_off[n + 1] - b.vert_off[n], before.vert_off[i + 1] - before.vert_off[i]);
+    for (int v = 0; v < b.vert_off[n + 1] - b.vert_off[n]; ++v)
+      EXPECT_EQ(b.local_xy[static_cast<std::size_t>(b.vert_off[n] + v)],
+                before.local_xy[static_cast<std::size_t>(before.vert_off[i] + v)]);
+    ASSERT_EQ(b.quad_off[n + 1] - b.quad_off[n], before.quad_off[i + 1] - before.quad_off[i]);
+    for (int q = 0; q < b.quad_off[n + 1] - b.quad_off[n]; ++q)
+      EXPECT_EQ(b.quad_weight[static_cast<std::size_t>(b.quad_off[n] + q)],
+                before.quad_weight[static_cast<std::size_t>(before.quad_off[i] + q)]);
+  }
+  EXPECT_EQ(b.dynamic_mass, before.dynamic_mass);
 }
 
 }  // namespace

@@ -87,7 +87,9 @@ struct Stage {
   const dynamics::ContactSum::Totals& run(const Floes& f, double dt, int threads,
                                           const bonds::BondSet* bonds = nullptr) {
     stage.find_pairs(f.view(), law, dynamics::PlanarNarrowPhase::exact, threads, lists);
-    return stage.evaluate(f.input(dt, threads, bonds), law, lists, cache);
+    const dynamics::PlanarContactInput in = f.input(dt, threads, bonds);
+    stage.evaluate(in, law, lists, cache);
+    return stage.sum(in, lists, cache);
   }
 };
 
