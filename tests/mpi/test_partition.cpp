@@ -12,11 +12,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 #include <vector>
 
 #include "domain/partition.h"
+#include "mpi_test_main.h"
 
 using namespace polyfloe;
 using domain::Partition;
@@ -25,16 +25,8 @@ using geometry::Vec2;
 
 namespace {
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int ranks() {
-  int r = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &r);
-  return r;
-}
+int rank() { return polyfloe::tsupport::mpi_rank(); }
+int ranks() { return polyfloe::tsupport::mpi_ranks(); }
 
 constexpr int kColumns = 40, kRows = 25;  // the lattice of floes, 10 m apart
 
@@ -126,28 +118,4 @@ TEST(Partition, BoxesReachTheRanksTheyCrossAndNoFloesMeansNoCuts) {
   EXPECT_EQ(none.rank_of(Vec2{5.0, 5.0}), 0);
   none.ranks_of({Vec2{0.0, 0.0}, Vec2{1.0, 1.0}}, reached);
   EXPECT_EQ(reached, std::vector<int>{0});
-}
-
-// The other ranks' failures, each line naming its rank (rank 0 prints gtest's usual report).
-class RankFailures : public ::testing::EmptyTestEventListener {
-  void OnTestPartResult(const ::testing::TestPartResult& r) override {
-    if (r.failed())
-      std::fprintf(stderr, "rank %d: %s:%d: %s\n", rank(), r.file_name() ? r.file_name() : "?", r.line_number(),
-                   r.summary());
-  }
-};
-
-// MPI around gtest: every rank runs every test; the run fails when any rank's does.
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (rank() != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-    listeners.Append(new RankFailures);
-  }
-  int failed = RUN_ALL_TESTS(), any = 0;
-  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return any;
 }

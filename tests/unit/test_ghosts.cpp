@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <barrier>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <thread>
@@ -25,8 +24,7 @@
 #include "dense_pack.h"
 #include "dynamics/step_exchange.h"
 #include "dynamics/world.h"
-#include "forcing/analytic_fields.h"
-#include "world_checks.h"
+#include "shared_ice.h"
 
 using namespace polyfloe;
 using dynamics::BodyId;
@@ -89,24 +87,13 @@ class LockStep : public dynamics::StepExchange {
   int rank_;
 };
 
-bool same_bits(const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof(x)) == 0; }
-
 struct Case {
   int worlds = 2;
   contact::ForceModel model = contact::ForceModel::centroid;
   bool drift = false;
 };
 
-dynamics::WorldSettings settings_of(const Case& c) {
-  dynamics::WorldSettings ws = tsupport::no_drift();
-  ws.contact.force_model = c.model;
-  ws.store_in_space_order = true;
-  if (c.drift) {
-    ws.drift = forcing::DriftSettings{};
-    ws.drift.ocean = forcing::make_field(forcing::FieldSpec::uniform({0.3, 0.1}));
-  }
-  return ws;
-}
+dynamics::WorldSettings settings_of(const Case& c) { return tsupport::shared_ice_settings(c.model, c.drift); }
 
 // The floes of `pack` cut into `n` stripes of x (as many floes each), with the ghosts each stripe's World needs: the
 // floes not its own whose circumscribed box, grown by `margin` [m], overlaps the box around its own grown the same.
@@ -201,17 +188,8 @@ TEST_P(Ghosts, WorldsSharingThePackGiveEachOwnedFloeTheBitsOfOneWorld) {
     double energy = 0.0;
     std::vector<contact::ContactCache::Entry> springs;
     for (const auto& w : ice.worlds) {
-      for (int i = 0; i < static_cast<int>(w->size()); ++i) {
-        if (w->is_ghost(i)) continue;
-        ++owned;
-        const int j = one.index_of(w->id(i));
-        ASSERT_TRUE(same_bits(w->positions()[i], one.positions()[j])) << "body " << w->id(i) << ", step " << step;
-        ASSERT_TRUE(same_bits(w->yaws()[i], one.yaws()[j])) << "body " << w->id(i) << ", step " << step;
-        ASSERT_TRUE(same_bits(w->velocities()[i], one.velocities()[j])) << "body " << w->id(i) << ", step " << step;
-        ASSERT_TRUE(same_bits(w->angular_velocities()[i], one.angular_velocities()[j])) << "body " << w->id(i);
-        ASSERT_TRUE(same_bits(w->forces()[i], one.forces()[j])) << "body " << w->id(i) << ", step " << step;
-        ASSERT_TRUE(same_bits(w->torques()[i], one.torques()[j])) << "body " << w->id(i) << ", step " << step;
-      }
+      owned += tsupport::expect_owned_as_in_one(*w, one, step);
+      if (HasFailure()) return;
       contacts += w->contact_count();
       energy += w->kinetic_energy();
       const auto& e = w->contact_cache().entries();
