@@ -1,0 +1,319 @@
+// The planar World cut among MPI ranks (domain/distributed_world.h).
+#include "domain/distributed_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "dynamics/state_fields.h"
+#include "geometry/space_order.h"
+
+namespace polyfloe::domain {
+
+namespace {
+
+using Bytes = std::vector<unsigned char>;
+using dynamics::BodyId;
+
+template <class T>
+void put(Bytes& out, const T& x) {
+  const auto* p = reinterpret_cast<const unsigned char*>(&x);
+  out.insert(out.end(), p, p + sizeof(T));
+}
+template <class T>
+T get(const unsigned char*& in) {
+  T x;
+  std::memcpy(&x, in, sizeof(T));
+  in += sizeof(T);
+  return x;
+}
+
+// Appends the rows `rows` of every per-body field of a state, each field behind a byte that says whether the state
+// has it (the drift model's fields may be empty).
+class RowPacker : public dynamics::BodyFieldVisitor {
+ public:
+  RowPacker(std::span<const int> rows, Bytes& out) : rows_(rows), out_(out) {}
+  template <class T>
+  void bodies(const char*, const std::vector<T>& v) {
+    put_rows(v);
+  }
+  template <class T>
+  void bodies_or_none(const char*, const std::vector<T>& v) {
+    put_rows(v);
+  }
+
+ private:
+  template <class T>
+  void put_rows(const std::vector<T>& v) {
+    using Row = dynamics::StateRow<T>;
+    put(out_, static_cast<std::uint8_t>(!v.empty()));
+    if (v.empty()) return;
+    typename Row::Scalar x[Row::width];
+    for (const int k : rows_) {
+      Row::pack(v[static_cast<std::size_t>(k)], x);
+      for (const auto s : x) put(out_, s);
+    }
+  }
+  std::span<const int> rows_;
+  Bytes& out_;
+};
+
+// Appends `n` rows of every per-body field, read from `in`, to a state's fields.
+class RowUnpacker : public dynamics::BodyFieldVisitor {
+ public:
+  RowUnpacker(std::size_t n, const unsigned char*& in) : n_(n), in_(in) {}
+  template <class T>
+  void bodies(const char*, std::vector<T>& v) {
+    take(v);
+  }
+  template <class T>
+  void bodies_or_none(const char*, std::vector<T>& v) {
+    take(v);
+  }
+
+ private:
+  template <class T>
+  void take(std::vector<T>& v) {
+    using Row = dynamics::StateRow<T>;
+    if (!get<std::uint8_t>(in_)) return;
+    typename Row::Scalar x[Row::width];
+    for (std::size_t k = 0; k < n_; ++k) {
+      for (auto& s : x) s = get<typename Row::Scalar>(in_);
+      T row;
+      Row::unpack(x, row);
+      v.push_back(row);
+    }
+  }
+  std::size_t n_;
+  const unsigned char*& in_;
+};
+
+// One message: rows of `s` and contact histories.
+void pack(const dynamics::WorldState& s, std::span<const int> rows,
+          std::span<const contact::ContactCache::Entry* const> history, Bytes& out) {
+  put(out, static_cast<std::uint64_t>(rows.size()));
+  RowPacker packer(rows, out);
+  visit_fields(packer, s);
+  put(out, static_cast<std::uint64_t>(history.size()));
+  for (const contact::ContactCache::Entry* e : history) {
+    put(out, e->first.lo);
+    put(out, e->first.hi);
+    put(out, e->second.spring);
+    put(out, e->second.normal_force);
+  }
+}
+
+// A message's rows and histories appended to `s`.
+void unpack(const Bytes& in, dynamics::WorldState& s) {
+  if (in.empty()) return;
+  const unsigned char* p = in.data();
+  const auto n = get<std::uint64_t>(p);
+  RowUnpacker unpacker(n, p);
+  visit_fields(unpacker, s);
+  const auto h = get<std::uint64_t>(p);
+  for (std::uint64_t k = 0; k < h; ++k) {
+    contact::ContactCache::Entry e;
+    e.first.lo = get<std::uint64_t>(p);
+    e.first.hi = get<std::uint64_t>(p);
+    e.second.spring = get<double>(p);
+    e.second.normal_force = get<double>(p);
+    s.contact_history.push_back(e);
+  }
+}
+
+// Every rank's out[q] to rank q; returns what each rank sent this one.
+std::vector<Bytes> all_to_all(MPI_Comm comm, const std::vector<Bytes>& out) {
+  const int ranks = static_cast<int>(out.size());
+  std::vector<int> send_count(out.size()), recv_count(out.size()), send_at(out.size() + 1, 0),
+      recv_at(out.size() + 1, 0);
+  for (int q = 0; q < ranks; ++q) send_count[q] = static_cast<int>(out[q].size());
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, recv_count.data(), 1, MPI_INT, comm);
+  for (int q = 0; q < ranks; ++q) {
+    send_at[q + 1] = send_at[q] + send_count[q];
+    recv_at[q + 1] = recv_at[q] + recv_count[q];
+  }
+  Bytes flat_out(static_cast<std::size_t>(send_at.back())), flat_in(static_cast<std::size_t>(recv_at.back()));
+  for (int q = 0; q < ranks; ++q) std::copy(out[q].begin(), out[q].end(), flat_out.begin() + send_at[q]);
+  MPI_Alltoallv(flat_out.data(), send_count.data(), send_at.data(), MPI_BYTE, flat_in.data(), recv_count.data(),
+                recv_at.data(), MPI_BYTE, comm);
+  std::vector<Bytes> in(out.size());
+  for (int q = 0; q < ranks; ++q) in[q].assign(flat_in.begin() + recv_at[q], flat_in.begin() + recv_at[q + 1]);
+  return in;
+}
+
+}  // namespace
+
+DistributedWorld::DistributedWorld(MPI_Comm comm, const dynamics::WorldSettings& settings,
+                                   std::vector<dynamics::BodyDesc> bodies, double margin)
+    : comm_(comm), settings_(settings), bodies_(std::move(bodies)), partition_(comm) {
+  if (settings_.contact.force_model == contact::ForceModel::foundation &&
+      settings_.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa)
+    throw std::invalid_argument("the foundation force model needs the exact narrow phase");
+  double radius_sum = 0.0;  // as a World adding the bodies in this order sums them
+  int dynamic = 0;
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    const dynamics::BodyDesc& d = bodies_[k];
+    if (!d.shape) throw std::invalid_argument("body " + std::to_string(d.id) + " has no shape");
+    if (!desc_of_.emplace(d.id, k).second) throw std::invalid_argument("duplicate body id " + std::to_string(d.id));
+    if (d.motion == dynamics::Motion::dynamic) {
+      radius_sum += d.shape->equivalent_radius();
+      ++dynamic;
+    }
+  }
+  if (settings_.space_order_cell <= 0.0 && dynamic > 0)
+    settings_.space_order_cell = geometry::space_order_cell(radius_sum / dynamic);
+  margin_ = margin > 0.0 ? margin : dynamic > 0 ? 0.5 * radius_sum / dynamic : 1.0;
+  // The partition of the floes (each rank offers a share: every rank knows every body), then each rank's own.
+  std::vector<PartitionItem> items;
+  for (std::size_t k = 0; k < bodies_.size(); ++k)
+    if (static_cast<int>(k % static_cast<std::size_t>(ranks())) == rank())
+      items.push_back({bodies_[k].id, bodies_[k].position, 1.0});
+  partition_.balance(items);
+  std::vector<BodyId> owned;
+  std::vector<HaloItem> mine;
+  for (const dynamics::BodyDesc& d : bodies_) {
+    if (partition_.rank_of(d.position) != rank()) continue;
+    owned.push_back(d.id);
+    const double r = d.shape->circumradius();
+    mine.push_back({d.id, {d.position - geometry::Vec2{r, r}, d.position + geometry::Vec2{r, r}}});
+  }
+  build(owned, halo_layout(comm_, mine, margin_), nullptr);
+}
+
+DistributedWorld::~DistributedWorld() = default;
+
+void DistributedWorld::build(const std::vector<BodyId>& owned, const HaloLayout& layout,
+                             const dynamics::WorldState* state) {
+  auto w = std::make_unique<dynamics::World>(settings_);
+  w->set_threads(threads_);
+  for (const BodyId id : owned) w->add_body(bodies_[desc_of_.at(id)]);
+  for (const std::vector<BodyId>& ids : layout.recv)
+    for (const BodyId id : ids) w->set_ghost(w->add_body(bodies_[desc_of_.at(id)]), true);
+  auto halo = std::make_unique<HaloExchange>(comm_, layout);
+  w->set_exchange(halo.get());
+  if (state) w->restore(*state);
+  world_ = std::move(w);
+  halo_ = std::move(halo);
+  // Where the owned floes are now: how far they move is measured from here.
+  pose_by_id_.clear();
+  for (int i = 0; i < static_cast<int>(world_->size()); ++i)
+    if (!world_->is_ghost(i)) pose_by_id_[world_->id(i)] = {world_->positions()[i], world_->yaws()[i]};
+  reorders_seen_ = ~std::uint64_t{0};
+}
+
+double DistributedWorld::moved() const {
+  const dynamics::World& w = *world_;
+  const int n = static_cast<int>(w.size());
+  if (w.body_reorders() != reorders_seen_) {  // indices changed: the poses by index anew
+    pos_at_.assign(static_cast<std::size_t>(n), geometry::Vec2{0.0, 0.0});
+    yaw_at_.assign(static_cast<std::size_t>(n), 0.0);
+    for (int i = 0; i < n; ++i)
+      if (!w.is_ghost(i)) std::tie(pos_at_[i], yaw_at_[i]) = pose_by_id_.at(w.id(i));
+    reorders_seen_ = w.body_reorders();
+  }
+  double most = 0.0;
+  for (int i = 0; i < n; ++i) {
+    if (w.is_ghost(i)) continue;
+    const double d =
+        (w.positions()[i] - pos_at_[i]).norm() + std::abs(w.yaws()[i] - yaw_at_[i]) * w.shape(i).circumradius();
+    most = std::max(most, d);
+  }
+  return most;
+}
+
+void DistributedWorld::step(double dt) {
+  // (renewed before the step rather than after the last: the World then keeps its last evaluation's contacts and
+  // report for whoever reads them between steps)
+  if (renew_due_) {
+    renew();
+    renew_due_ = false;
+  }
+  world_->step(dt);
+  const double mine = moved();
+  double most = 0.0;
+  MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  if (most > 0.5 * margin_)
+    throw std::runtime_error("a floe moved " + std::to_string(most) +
+                             " m since the ranks last exchanged their floes (" + std::to_string(renewals_) +
+                             " renewals, step " + std::to_string(world_->step_count()) +
+                             "): more than half the halo's margin, " + std::to_string(margin_) +
+                             " m, so contacts across ranks may have been missed. The time step is far too large.");
+  renew_due_ = most > 0.25 * margin_;
+}
+
+void DistributedWorld::renew() {
+  const dynamics::World& w = *world_;
+  if (w.bonds()) throw std::logic_error("bonds across ranks are not supported yet");
+  const dynamics::WorldState s = w.state();  // rows in id order, owned floes and ghosts
+  std::vector<int> own_rows;
+  std::vector<PartitionItem> items;
+  for (std::size_t k = 0; k < s.ids.size(); ++k)
+    if (!w.is_ghost(w.index_of(s.ids[k]))) {
+      own_rows.push_back(static_cast<int>(k));
+      items.push_back({s.ids[k], s.position[k], 1.0});
+    }
+  // Each floe to the rank of its region, with the histories of the pairs it evaluates (those of which it has the
+  // lower id); the regions cut anew first where the ranks' shares have drifted apart (the largest more than
+  // kImbalance x the mean: the floes' counts for now, not yet their measured cost).
+  const double share = static_cast<double>(items.size());
+  double largest = 0.0, total = 0.0;
+  MPI_Allreduce(&share, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  MPI_Allreduce(&share, &total, 1, MPI_DOUBLE, MPI_SUM, comm_);
+  std::vector<int> to;
+  if (largest > kImbalance * total / ranks()) {
+    to = partition_.balance(items);
+    ++rebalances_;
+  } else {
+    for (const PartitionItem& it : items) to.push_back(partition_.rank_of(it.position));
+  }
+  const auto ranks_n = static_cast<std::size_t>(ranks());
+  std::vector<std::vector<int>> rows_to(ranks_n);
+  std::unordered_map<BodyId, int> dest;
+  for (std::size_t j = 0; j < own_rows.size(); ++j) {
+    rows_to[static_cast<std::size_t>(to[j])].push_back(own_rows[j]);
+    dest[s.ids[static_cast<std::size_t>(own_rows[j])]] = to[j];
+  }
+  std::vector<std::vector<const contact::ContactCache::Entry*>> history_to(ranks_n);
+  for (const contact::ContactCache::Entry& e : s.contact_history)
+    history_to[static_cast<std::size_t>(dest.at(e.first.lo))].push_back(&e);
+  std::vector<Bytes> out(ranks_n);
+  for (std::size_t q = 0; q < ranks_n; ++q) pack(s, rows_to[q], history_to[q], out[q]);
+  dynamics::WorldState owned;
+  owned.time = s.time;
+  owned.steps = s.steps;
+  owned.forces_ready = s.forces_ready;
+  owned.bonds_failed_last = s.bonds_failed_last;
+  const std::vector<Bytes> in = all_to_all(comm_, out);
+  for (std::size_t q = 0; q < ranks_n; ++q) {
+    const std::size_t before = owned.ids.size();
+    unpack(in[q], owned);
+    if (static_cast<int>(q) != rank()) migrated_ += owned.ids.size() - before;
+  }
+  // The ghosts for the floes now owned, and their rows from their owners.
+  std::vector<HaloItem> mine;
+  std::unordered_map<BodyId, int> row_of;
+  for (std::size_t k = 0; k < owned.ids.size(); ++k) {
+    const double r = bodies_[desc_of_.at(owned.ids[k])].shape->circumradius();
+    mine.push_back(
+        {owned.ids[k], {owned.position[k] - geometry::Vec2{r, r}, owned.position[k] + geometry::Vec2{r, r}}});
+    row_of[owned.ids[k]] = static_cast<int>(k);
+  }
+  const HaloLayout layout = halo_layout(comm_, mine, margin_);
+  for (std::size_t q = 0; q < ranks_n; ++q) {
+    out[q].clear();
+    std::vector<int> rows;
+    for (const BodyId id : layout.send[q]) rows.push_back(row_of.at(id));
+    pack(owned, rows, {}, out[q]);
+  }
+  dynamics::WorldState full = owned;
+  for (const Bytes& m : all_to_all(comm_, out)) unpack(m, full);
+  std::vector<BodyId> owned_ids = owned.ids;
+  build(owned_ids, layout, &full);
+  ++renewals_;
+}
+
+}  // namespace polyfloe::domain

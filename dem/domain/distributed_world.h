@@ -1,0 +1,84 @@
+// The planar World cut among MPI ranks. Every rank is given the whole scene's bodies (the same list, in the same
+// order); each owns the floes whose centroids lie in its region of Zoltan's recursive coordinate bisection
+// (domain/partition.h) and holds ghosts of the floes of others that can touch its own (domain/halo.h). Each step
+// exchanges the ghosts' poses and predicted velocities and the forces of the pairs whose floes have different
+// owners, so that every floe moves, bit for bit, as it would in one World holding every body. As the floes drift the
+// halo is renewed: each floe migrates to the rank of its region with its state and the histories of the contacts it
+// evaluates (the regions cut anew first where the ranks' shares have drifted apart), and the ghosts are chosen anew.
+//
+// Not yet: bonds (a scene with frozen ice is refused), fixed or kinematic bodies other than as ghosts' partners (any
+// motion works; walls are owned like floes), and output gathered from the ranks.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "domain/halo.h"
+#include "domain/partition.h"
+#include "dynamics/world.h"
+
+namespace polyfloe::domain {
+
+class DistributedWorld {
+ public:
+  // Collective over `comm`. `settings` as for a World; its space_order_cell, where 0, is set from `bodies` as a World
+  // that adds them in this order sets it (so that the ranks share it). The halo's margin [m]: 0 = 0.5 x the mean
+  // equivalent radius of the dynamic bodies. Throws std::invalid_argument on a bad body (as World::add_body).
+  DistributedWorld(MPI_Comm comm, const dynamics::WorldSettings& settings, std::vector<dynamics::BodyDesc> bodies,
+                   double margin = 0.0);
+  ~DistributedWorld();
+  DistributedWorld(const DistributedWorld&) = delete;
+  DistributedWorld& operator=(const DistributedWorld&) = delete;
+
+  // Collective: one step of dt [s]. The halo is renewed first where, after the last step, some floe had moved more
+  // than a quarter of the margin since the last renewal. Throws std::runtime_error (on every rank) when a floe moved more than half the
+  // margin within the steps since: pairs could then have been missed, and the time step is far too large.
+  void step(double dt);
+
+  // This rank's World: its own floes and its ghosts (World::is_ghost).
+  const dynamics::World& local() const { return *world_; }
+  const HaloExchange& halo() const { return *halo_; }
+  double margin() const { return margin_; }
+  std::uint64_t renewals() const { return renewals_; }
+  std::uint64_t rebalances() const { return rebalances_; }  // renewals that cut the regions anew
+  // A renewal cuts the regions anew where the largest rank's share of the floes exceeds this x the mean.
+  static constexpr double kImbalance = 1.1;
+  std::uint64_t migrated() const { return migrated_; }  // floes this rank took over from others, in all renewals
+  int rank() const { return partition_.rank(); }
+  // Worker threads of each rank's World (OpenMP; see World::set_threads).
+  void set_threads(int threads) {
+    threads_ = threads;
+    world_->set_threads(threads);
+  }
+  int ranks() const { return partition_.ranks(); }
+
+ private:
+  // A World of `owned` and `ghosts` (ids) with `state` (rows for all of them; none: as the bodies were given).
+  void build(const std::vector<dynamics::BodyId>& owned, const HaloLayout& layout, const dynamics::WorldState* state);
+  void renew();
+  // The farthest any vertex of an owned floe has moved since the last renewal [m] (on this rank).
+  double moved() const;
+
+  MPI_Comm comm_;
+  dynamics::WorldSettings settings_;
+  std::vector<dynamics::BodyDesc> bodies_;
+  std::unordered_map<dynamics::BodyId, std::size_t> desc_of_;
+  double margin_ = 0.0;
+  Partition partition_;
+  std::unique_ptr<dynamics::World> world_;
+  std::unique_ptr<HaloExchange> halo_;
+  std::uint64_t renewals_ = 0, migrated_ = 0, rebalances_ = 0;
+  int threads_ = 1;
+  bool renew_due_ = false;
+  // The owned floes' poses at the last renewal, by index of the World (re-read by id after it re-stores its bodies).
+  mutable std::vector<geometry::Vec2> pos_at_;
+  mutable std::vector<double> yaw_at_;
+  mutable std::unordered_map<dynamics::BodyId, std::pair<geometry::Vec2, double>> pose_by_id_;
+  mutable std::uint64_t reorders_seen_ = 0;
+};
+
+}  // namespace polyfloe::domain
