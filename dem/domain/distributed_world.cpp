@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "domain/collectives.h"
 #include "dynamics/state_fields.h"
 #include "geometry/space_order.h"
 
@@ -125,34 +126,11 @@ void unpack(const Bytes& in, dynamics::WorldState& s) {
   }
 }
 
-// Every rank's out[q] to rank q; returns what each rank sent this one.
-std::vector<Bytes> all_to_all(MPI_Comm comm, const std::vector<Bytes>& out) {
-  const int ranks = static_cast<int>(out.size());
-  std::vector<int> send_count(out.size()), recv_count(out.size()), send_at(out.size() + 1, 0),
-      recv_at(out.size() + 1, 0);
-  for (int q = 0; q < ranks; ++q) send_count[q] = static_cast<int>(out[q].size());
-  MPI_Alltoall(send_count.data(), 1, MPI_INT, recv_count.data(), 1, MPI_INT, comm);
-  for (int q = 0; q < ranks; ++q) {
-    send_at[q + 1] = send_at[q] + send_count[q];
-    recv_at[q + 1] = recv_at[q] + recv_count[q];
-  }
-  Bytes flat_out(static_cast<std::size_t>(send_at.back())), flat_in(static_cast<std::size_t>(recv_at.back()));
-  for (int q = 0; q < ranks; ++q) std::copy(out[q].begin(), out[q].end(), flat_out.begin() + send_at[q]);
-  MPI_Alltoallv(flat_out.data(), send_count.data(), send_at.data(), MPI_BYTE, flat_in.data(), recv_count.data(),
-                recv_at.data(), MPI_BYTE, comm);
-  std::vector<Bytes> in(out.size());
-  for (int q = 0; q < ranks; ++q) in[q].assign(flat_in.begin() + recv_at[q], flat_in.begin() + recv_at[q + 1]);
-  return in;
-}
-
 }  // namespace
 
 DistributedWorld::DistributedWorld(MPI_Comm comm, const dynamics::WorldSettings& settings,
                                    std::vector<dynamics::BodyDesc> bodies, double margin)
     : comm_(comm), settings_(settings), bodies_(std::move(bodies)), partition_(comm) {
-  if (settings_.contact.force_model == contact::ForceModel::foundation &&
-      settings_.narrow_phase == dynamics::PlanarNarrowPhase::gjk_epa)
-    throw std::invalid_argument("the foundation force model needs the exact narrow phase");
   double radius_sum = 0.0;  // as a World adding the bodies in this order sums them
   int dynamic = 0;
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
@@ -247,7 +225,6 @@ void DistributedWorld::step(double dt) {
 
 void DistributedWorld::renew() {
   const dynamics::World& w = *world_;
-  if (w.bonds()) throw std::logic_error("bonds across ranks are not supported yet");
   const dynamics::WorldState s = w.state();  // rows in id order, owned floes and ghosts
   std::vector<int> own_rows;
   std::vector<PartitionItem> items;

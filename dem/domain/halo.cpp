@@ -1,6 +1,8 @@
 // The halo of a rank and the step's exchange over MPI (domain/halo.h).
 #include "domain/halo.h"
 
+#include "domain/collectives.h"
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -53,20 +55,8 @@ HaloLayout halo_layout(MPI_Comm comm, std::span<const HaloItem> owned, double ma
     for (const HaloItem& it : by_id)
       if (geometry::Aabb{it.box.lo - g, it.box.hi + g}.overlaps(theirs)) layout.send[q].push_back(it.id);
   }
-  // Each rank learns which ghosts it holds from the ranks that send them (counts, then the ids).
-  std::vector<int> send_count(static_cast<std::size_t>(ranks)), recv_count(send_count.size());
-  std::vector<int> send_at(send_count.size() + 1, 0), recv_at(send_count.size() + 1, 0);
-  for (int q = 0; q < ranks; ++q) send_count[q] = static_cast<int>(layout.send[q].size());
-  MPI_Alltoall(send_count.data(), 1, MPI_INT, recv_count.data(), 1, MPI_INT, comm);
-  for (int q = 0; q < ranks; ++q) {
-    send_at[q + 1] = send_at[q] + send_count[q];
-    recv_at[q + 1] = recv_at[q] + recv_count[q];
-  }
-  std::vector<std::uint64_t> ids_out(static_cast<std::size_t>(send_at.back())), ids_in(recv_at.back());
-  for (int q = 0; q < ranks; ++q) std::copy(layout.send[q].begin(), layout.send[q].end(), ids_out.begin() + send_at[q]);
-  MPI_Alltoallv(ids_out.data(), send_count.data(), send_at.data(), MPI_UINT64_T, ids_in.data(), recv_count.data(),
-                recv_at.data(), MPI_UINT64_T, comm);
-  for (int q = 0; q < ranks; ++q) layout.recv[q].assign(ids_in.begin() + recv_at[q], ids_in.begin() + recv_at[q + 1]);
+  // Each rank learns which ghosts it holds from the ranks that send them.
+  layout.recv = all_to_all(comm, layout.send);
   return layout;
 }
 
