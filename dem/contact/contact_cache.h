@@ -95,10 +95,14 @@ class HistoryStore {
   // Entries in a deterministic order (by key: for checkpoints and tests).
   std::vector<Entry> entries() const {
     std::vector<Entry> out(prev_.begin(), prev_.end());
-    std::sort(out.begin(), out.end(), [](const Entry& x, const Entry& y) {
+    sort_by_key(out);
+    return out;
+  }
+  // Entries in the order entries() lists them: by key (lo, then hi).
+  static void sort_by_key(std::vector<Entry>& v) {
+    std::sort(v.begin(), v.end(), [](const Entry& x, const Entry& y) {
       return x.first.lo != y.first.lo ? x.first.lo < y.first.lo : x.first.hi < y.first.hi;
     });
-    return out;
   }
   void restore(const std::vector<Entry>& entries) {
     prev_ = entries;

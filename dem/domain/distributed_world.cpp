@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -126,6 +127,16 @@ void unpack(const Bytes& in, dynamics::WorldState& s) {
   }
 }
 
+// A state with the scalars of `s` and no rows.
+dynamics::WorldState scalars_of(const dynamics::WorldState& s) {
+  dynamics::WorldState out;
+  out.time = s.time;
+  out.steps = s.steps;
+  out.forces_ready = s.forces_ready;
+  out.bonds_failed_last = s.bonds_failed_last;
+  return out;
+}
+
 }  // namespace
 
 DistributedWorld::DistributedWorld(MPI_Comm comm, const dynamics::WorldSettings& settings,
@@ -145,21 +156,97 @@ DistributedWorld::DistributedWorld(MPI_Comm comm, const dynamics::WorldSettings&
   if (settings_.space_order_cell <= 0.0 && dynamic > 0)
     settings_.space_order_cell = geometry::space_order_cell(radius_sum / dynamic);
   margin_ = margin > 0.0 ? margin : dynamic > 0 ? 0.5 * radius_sum / dynamic : 1.0;
+  place(nullptr);
+}
+
+void DistributedWorld::place(const dynamics::WorldState* full) {
+  // Where each body is (by its place in bodies_): the state's row, else as given.
+  std::vector<geometry::Vec2> at(bodies_.size());
+  std::vector<int> row(bodies_.size(), -1);
+  for (std::size_t k = 0; k < bodies_.size(); ++k) at[k] = bodies_[k].position;
+  if (full)
+    for (std::size_t r = 0; r < full->ids.size(); ++r) {
+      const std::size_t k = desc_of_.at(full->ids[r]);
+      at[k] = full->position[r];
+      row[k] = static_cast<int>(r);
+    }
   // The partition of the floes (each rank offers a share: every rank knows every body), then each rank's own.
   std::vector<PartitionItem> items;
   for (std::size_t k = 0; k < bodies_.size(); ++k)
-    if (static_cast<int>(k % static_cast<std::size_t>(ranks())) == rank())
-      items.push_back({bodies_[k].id, bodies_[k].position, 1.0});
+    if (static_cast<int>(k % static_cast<std::size_t>(ranks())) == rank()) items.push_back({bodies_[k].id, at[k], 1.0});
   partition_.balance(items);
   std::vector<BodyId> owned;
   std::vector<HaloItem> mine;
-  for (const dynamics::BodyDesc& d : bodies_) {
-    if (partition_.rank_of(d.position) != rank()) continue;
-    owned.push_back(d.id);
-    const double r = d.shape->circumradius();
-    mine.push_back({d.id, {d.position - geometry::Vec2{r, r}, d.position + geometry::Vec2{r, r}}});
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    if (partition_.rank_of(at[k]) != rank()) continue;
+    owned.push_back(bodies_[k].id);
+    const double r = bodies_[k].shape->circumradius();
+    mine.push_back({bodies_[k].id, {at[k] - geometry::Vec2{r, r}, at[k] + geometry::Vec2{r, r}}});
   }
-  build(owned, halo_layout(comm_, mine, margin_), nullptr);
+  const HaloLayout layout = halo_layout(comm_, mine, margin_);
+  renew_due_ = false;
+  if (!full) {
+    build(owned, layout, nullptr);
+    return;
+  }
+  // This rank's rows of the state (its floes' and its ghosts') and the histories of the pairs it evaluates.
+  std::vector<int> rows;
+  std::unordered_map<BodyId, bool> own;
+  for (const BodyId id : owned) {
+    rows.push_back(row[desc_of_.at(id)]);
+    own[id] = true;
+  }
+  for (const std::vector<BodyId>& ids : layout.recv)
+    for (const BodyId id : ids) rows.push_back(row[desc_of_.at(id)]);
+  std::vector<const contact::ContactCache::Entry*> history;
+  for (const contact::ContactCache::Entry& e : full->contact_history)
+    if (own.contains(e.first.lo)) history.push_back(&e);
+  Bytes bytes;
+  pack(*full, rows, history, bytes);
+  dynamics::WorldState part = scalars_of(*full);
+  unpack(bytes, part);
+  build(owned, layout, &part);
+}
+
+void DistributedWorld::restore(const dynamics::WorldState& full) {
+  auto bad = [](const std::string& what) { throw std::invalid_argument("world state: " + what); };
+  if (full.ids.size() != bodies_.size())
+    bad("it has " + std::to_string(full.ids.size()) + " bodies, the ice has " + std::to_string(bodies_.size()));
+  if (const std::string problem = dynamics::body_row_problem(full, false); !problem.empty()) bad(problem);
+  std::vector<char> seen(bodies_.size(), 0);
+  for (const BodyId id : full.ids) {
+    const auto it = desc_of_.find(id);
+    if (it == desc_of_.end()) bad("it has a body of id " + std::to_string(id) + ", the ice has none");
+    if (seen[it->second]++) bad("it lists the body of id " + std::to_string(id) + " twice");
+  }
+  for (const contact::ContactCache::Entry& e : full.contact_history)
+    if (!desc_of_.contains(e.first.lo) || !desc_of_.contains(e.first.hi))
+      bad("a contact history names a body the ice does not have (" + std::to_string(e.first.lo) + ", " +
+          std::to_string(e.first.hi) + ")");
+  if (full.bonds) bad("it has bonds; bonds across ranks are not supported yet");
+  place(&full);
+}
+
+std::optional<dynamics::WorldState> DistributedWorld::gather(int root) const {
+  const dynamics::World& w = *world_;
+  const dynamics::WorldState s = w.state();
+  std::vector<int> own_rows;
+  for (std::size_t k = 0; k < s.ids.size(); ++k)
+    if (!w.is_ghost(w.index_of(s.ids[k]))) own_rows.push_back(static_cast<int>(k));
+  std::vector<const contact::ContactCache::Entry*> history;  // (a World stores those of the pairs it evaluates)
+  for (const contact::ContactCache::Entry& e : s.contact_history) history.push_back(&e);
+  Bytes mine;
+  pack(s, own_rows, history, mine);
+  const std::vector<Bytes> all = gather_to(comm_, root, mine);
+  if (rank() != root) return std::nullopt;
+  dynamics::WorldState full = scalars_of(s);
+  for (const Bytes& m : all) unpack(m, full);
+  std::vector<int> from(full.ids.size());
+  std::iota(from.begin(), from.end(), 0);
+  std::sort(from.begin(), from.end(), [&](int x, int y) { return full.ids[x] < full.ids[y]; });
+  dynamics::gather_body_rows(full, from);
+  contact::ContactCache::sort_by_key(full.contact_history);
+  return full;
 }
 
 DistributedWorld::~DistributedWorld() = default;
@@ -259,11 +346,7 @@ void DistributedWorld::renew() {
     history_to[static_cast<std::size_t>(dest.at(e.first.lo))].push_back(&e);
   std::vector<Bytes> out(ranks_n);
   for (std::size_t q = 0; q < ranks_n; ++q) pack(s, rows_to[q], history_to[q], out[q]);
-  dynamics::WorldState owned;
-  owned.time = s.time;
-  owned.steps = s.steps;
-  owned.forces_ready = s.forces_ready;
-  owned.bonds_failed_last = s.bonds_failed_last;
+  dynamics::WorldState owned = scalars_of(s);
   const std::vector<Bytes> in = all_to_all(comm_, out);
   for (std::size_t q = 0; q < ranks_n; ++q) {
     const std::size_t before = owned.ids.size();

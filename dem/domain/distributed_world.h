@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -39,6 +40,16 @@ class DistributedWorld {
   // margin within the steps since: pairs could then have been missed, and the time step is far too large.
   void step(double dt);
 
+  // Collective: the whole ice's state on rank `root` (every floe's rows in id order, every contact history in key
+  // order: bit for bit what one World holding every floe gives as World::state()); none on the other ranks. What a
+  // checkpoint stores.
+  std::optional<dynamics::WorldState> gather(int root = 0) const;
+  // Collective, every rank given the same whole state (as gather() gives it, or one World's state() of the same
+  // bodies, from a run on any number of ranks): the regions cut anew for its poses, each rank's floes and ghosts
+  // taking their rows and histories from it. Throws std::invalid_argument (on every rank) where the state does not
+  // fit the bodies, naming what; bonds are refused.
+  void restore(const dynamics::WorldState& full);
+
   // This rank's World: its own floes and its ghosts (World::is_ghost).
   const dynamics::World& local() const { return *world_; }
   const HaloExchange& halo() const { return *halo_; }
@@ -57,6 +68,9 @@ class DistributedWorld {
   int ranks() const { return partition_.ranks(); }
 
  private:
+  // The regions cut for the floes' poses (the state's, else the bodies' as given), and this rank's World built for
+  // its share (its rows from the state).
+  void place(const dynamics::WorldState* full);
   // A World of `owned` and `ghosts` (ids) with `state` (rows for all of them; none: as the bodies were given).
   void build(const std::vector<dynamics::BodyId>& owned, const HaloLayout& layout, const dynamics::WorldState* state);
   void renew();

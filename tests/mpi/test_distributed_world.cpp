@@ -5,12 +5,21 @@
 //     halo is renewed every few steps (47 renewals in the pack's 300 steps, 126 in the gas's 800): every rank's own
 //     floes have bitwise the one World's poses, velocities, forces and torques at every 20th step, and the contacts
 //     evaluated on all ranks add up to the one World's;
+//   - the state gathered from the ranks is bitwise one World's state() (every field, contact histories included),
+//     and a state restored on all the ranks, or on one rank fewer, runs on bitwise as the one World (a restart on
+//     another number of ranks); a state that does not fit the bodies is refused on every rank;
+//   - corner cases: a floe larger than any rank's region (an 80 m square among 5-15 m floes driven at it), and
+//     every floe crossing one cut within the same few steps (two files of floes that meet head on where the ranks'
+//     regions part, all of them migrating, the regions then cut anew): bitwise as one World;
 //   - a floe that moves more than half the margin between two renewals stops the run on every rank with a message
 //     that says so (and that the time step is far too large).
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,7 +71,7 @@ TEST_P(Distributed, FloesMigrateAndMoveBitwiseAsInOneWorld) {
     }
     const int step = 20 * round;
     const std::size_t owned = tsupport::expect_owned_as_in_one(dw.local(), one, step);
-    if (HasFailure()) return;
+    if (tsupport::any_rank_failed()) return;
     std::uint64_t counts[2] = {owned, dw.local().contact_count()}, all[2] = {0, 0};
     MPI_Allreduce(counts, all, 2, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
     ASSERT_EQ(all[0], one.size()) << "step " << step;  // each floe owned by one rank
@@ -94,6 +103,176 @@ INSTANTIATE_TEST_SUITE_P(Packs, Distributed,
                                                                  : "Jostling") +
                                   "_" + std::to_string(info.param.threads) + "Threads";
                          });
+
+// Steps `one` and `dw` together for `steps` steps of dt, each rank's floes checked bitwise against the one World every
+// `every` steps; returns the contacts the one World had at those checks, summed.
+std::size_t run_as_one(dynamics::World& one, domain::DistributedWorld& dw, double dt, int steps, int every) {
+  std::size_t contacts = 0;
+  for (int step = 1; step <= steps; ++step) {
+    one.step(dt);
+    dw.step(dt);
+    if (step % every != 0) continue;
+    const std::size_t owned = tsupport::expect_owned_as_in_one(dw.local(), one, step);
+    std::uint64_t counts[2] = {owned, dw.local().contact_count()}, all[2] = {0, 0};
+    MPI_Allreduce(counts, all, 2, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    EXPECT_EQ(all[0], one.size()) << "step " << step;
+    EXPECT_EQ(all[1], one.contact_count()) << "step " << step;
+    if (tsupport::any_rank_failed()) return contacts;
+    contacts += one.contact_count();
+  }
+  return contacts;
+}
+
+std::uint64_t sum_over_ranks(std::uint64_t x) {
+  std::uint64_t all = 0;
+  MPI_Allreduce(&x, &all, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  return all;
+}
+
+// One World and a DistributedWorld of the same bodies (no drift), the step a 40th of the shortest contact at `speed`
+// [m/s], stepped together by run(seconds, every) (run_as_one).
+struct SideBySide {
+  SideBySide(const std::vector<dynamics::BodyDesc>& bodies, double speed, double margin)
+      : one(settings()), dw(MPI_COMM_WORLD, settings(), bodies, margin) {
+    for (const auto& d : bodies) one.add_body(d);
+    dt = one.shortest_contact_duration(speed) / 40.0;
+  }
+  static dynamics::WorldSettings settings() {
+    return tsupport::shared_ice_settings(contact::ForceModel::centroid, false);
+  }
+  std::size_t run(double seconds, int every) {
+    const std::size_t contacts = run_as_one(one, dw, dt, static_cast<int>(seconds / dt), every);
+    migrated = sum_over_ranks(dw.migrated());
+    if (mpi_rank() == 0)
+      std::printf("dt %.3g s, %zu contacts seen, %llu renewals (%llu rebalanced), %llu floes migrated\n", dt, contacts,
+                  static_cast<unsigned long long>(dw.renewals()), static_cast<unsigned long long>(dw.rebalances()),
+                  static_cast<unsigned long long>(migrated));
+    return contacts;
+  }
+  dynamics::World one;
+  domain::DistributedWorld dw;
+  double dt = 0.0;             // [s]
+  std::uint64_t migrated = 0;  // over all ranks
+};
+
+TEST(DistributedCorners, AFloeLargerThanARegion) {
+  // 5-15 m floes on a 16 m lattice, those within 8 m of the square taken out, all driven towards the origin (at up
+  // to 4.8 m/s), where an 80 m square floe lies across every rank's region.
+  std::vector<dynamics::BodyDesc> bodies;
+  for (dynamics::BodyDesc d : tsupport::make_field(3u, 144, 16.0, 0.2, 0.05).bodies) {
+    if (std::abs(d.position.x()) < 48.0 && std::abs(d.position.y()) < 48.0) continue;
+    d.velocity -= 0.1 * d.position;  // [1/s]
+    bodies.push_back(d);
+  }
+  dynamics::BodyDesc giant;
+  giant.id = 1000;
+  giant.shape = tsupport::shape_of({{-40.0, -40.0}, {40.0, -40.0}, {40.0, 40.0}, {-40.0, 40.0}});
+  bodies.push_back(giant);
+  SideBySide both(bodies, 6.0, 1.0);
+  EXPECT_GT(both.run(3.0, 25), 20u);
+  const dynamics::World& one = both.one;
+  EXPECT_GT(one.velocities()[static_cast<std::size_t>(one.index_of(1000))].norm(), 0.0);  // struck (from rest)
+  // The square is held as a ghost by every other rank (its box reaches every region).
+  const dynamics::World& mine = both.dw.local();
+  const int i = mine.index_of(1000);
+  EXPECT_EQ(sum_over_ranks(i >= 0 ? 1 : 0), static_cast<std::uint64_t>(mpi_ranks()));
+  EXPECT_EQ(sum_over_ranks(i >= 0 && !mine.is_ghost(i) ? 1 : 0), 1u);
+}
+
+TEST(DistributedCorners, EveryFloeCrossingOneCutAtOnce) {
+  // Two files of 6 hexagonal floes (0.3 m to the corners), at x = -3 m and x = +3 m, the first running at the second
+  // at 2 m/s: the field is wider than high, so the first cut parts the files; every floe of the first file crosses
+  // it within the same step, then they all strike the second file.
+  std::vector<dynamics::BodyDesc> bodies;
+  std::vector<geometry::Vec2> hexagon;
+  for (int k = 0; k < 6; ++k) hexagon.push_back(0.3 * geometry::Vec2{std::cos(k * M_PI / 3), std::sin(k * M_PI / 3)});
+  for (int side = 0; side < 2; ++side)
+    for (int row = 0; row < 6; ++row) {
+      dynamics::BodyDesc d;
+      d.id = static_cast<dynamics::BodyId>(1 + 6 * side + row);
+      d.shape = tsupport::shape_of(hexagon);
+      d.position = {side ? 3.0 : -3.0, 0.8 * row - 2.0};
+      d.velocity = {side ? 0.0 : 2.0, 0.0};
+      bodies.push_back(d);
+    }
+  SideBySide both(bodies, 4.0, 0.1);
+  EXPECT_GT(both.run(3.0, 10), 6u);  // the files met
+  if (mpi_ranks() > 1) {
+    EXPECT_GE(both.migrated, 6u);  // the first file crossed to the other side
+  }
+}
+
+TEST(DistributedState, GatheredIsOneWorldsAndRestoresOnAnyNumberOfRanks) {
+  tsupport::PackSpec ps;
+  ps.speed = 0.3;  // [m/s]
+  ps.walls = false;
+  const std::vector<dynamics::BodyDesc> bodies = tsupport::make_pack(200, ps, 5u).bodies;
+  const dynamics::WorldSettings ws = tsupport::shared_ice_settings(contact::ForceModel::centroid, true);
+  dynamics::World one(ws);
+  for (const auto& d : bodies) one.add_body(d);
+  const double dt = one.shortest_contact_duration(1.0) / 40.0;
+  domain::DistributedWorld dw(MPI_COMM_WORLD, ws, bodies, 0.03);
+  for (int s = 0; s < 100; ++s) {
+    one.step(dt);
+    dw.step(dt);
+  }
+  ASSERT_GT(one.contact_count(), 100u);
+  const std::optional<dynamics::WorldState> gathered = dw.gather(0);
+  EXPECT_EQ(gathered.has_value(), mpi_rank() == 0);
+  if (gathered) tsupport::expect_same_state(*gathered, one.state(), "gathered at step 100");
+  if (tsupport::any_rank_failed()) return;
+  // Restored from the one World's state (which the gathered state is, bit for bit) on every rank, and on one rank
+  // fewer: 100 more steps, bitwise as the one World.
+  const dynamics::WorldState at100 = one.state();
+  for (int s = 0; s < 100; ++s) one.step(dt);
+  const dynamics::WorldState at200 = one.state();
+  for (const int fewer : {0, 1}) {
+    const int ranks = std::max(1, mpi_ranks() - fewer);
+    MPI_Comm comm = MPI_COMM_NULL;
+    MPI_Comm_split(MPI_COMM_WORLD, mpi_rank() < ranks ? 0 : MPI_UNDEFINED, mpi_rank(), &comm);
+    if (comm == MPI_COMM_NULL) continue;
+    domain::DistributedWorld again(comm, ws, bodies, 0.03);
+    again.restore(at100);
+    for (int s = 0; s < 100; ++s) again.step(dt);
+    const std::optional<dynamics::WorldState> end = again.gather(0);
+    if (end) tsupport::expect_same_state(*end, at200, "restored on " + std::to_string(ranks) + " ranks, step 200");
+    MPI_Comm_free(&comm);
+  }
+}
+
+TEST(DistributedState, AStateThatDoesNotFitIsRefusedOnEveryRank) {
+  tsupport::PackSpec ps;
+  ps.walls = false;
+  const std::vector<dynamics::BodyDesc> bodies = tsupport::make_pack(60, ps, 4u).bodies;
+  dynamics::World one(tsupport::no_drift());
+  for (const auto& d : bodies) one.add_body(d);
+  domain::DistributedWorld dw(MPI_COMM_WORLD, tsupport::no_drift(), bodies);
+  auto refused = [&](dynamics::WorldState s, const std::string& says) {
+    try {
+      dw.restore(s);
+      ADD_FAILURE() << "no error for a state that " << says;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  dynamics::WorldState s = one.state();
+  s.ids[3] = 999;
+  refused(s, "a body of id 999");
+  s = one.state();
+  s.ids[3] = s.ids[4];
+  refused(s, "twice");
+  s = one.state();
+  s.velocity.pop_back();
+  refused(s, "velocity");
+  s = one.state();
+  s.contact_history.push_back({contact::make_key(1, 777), {}});
+  refused(s, "777");
+  s = one.state();
+  s.bonds.emplace();
+  refused(s, "bonds");
+  dw.restore(one.state());  // and the right one is taken
+  dw.step(1e-4);
+}
 
 TEST(DistributedRefuses, AFloeOutrunningTheHalo) {
   tsupport::PackSpec ps;

@@ -112,7 +112,7 @@ TEST_P(Halo, EachRanksFloesMoveBitwiseAsInOneWorld) {
     }
     const int step = 10 * round;
     tsupport::expect_owned_as_in_one(w, one, step);
-    if (HasFailure()) return;
+    if (tsupport::any_rank_failed()) return;
     const std::uint64_t contacts = w.contact_count();
     std::uint64_t all = 0;
     MPI_Allreduce(&contacts, &all, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);

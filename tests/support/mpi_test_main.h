@@ -21,6 +21,14 @@ inline int mpi_ranks() {
   return r;
 }
 
+// Collective: whether the running test has failed on any rank. A test that stops early must stop on every rank
+// (the others would wait in a collective for ever): `if (any_rank_failed()) return;`, never HasFailure() alone.
+inline bool any_rank_failed(MPI_Comm comm = MPI_COMM_WORLD) {
+  int mine = ::testing::Test::HasFailure() ? 1 : 0, any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any != 0;
+}
+
 class RankFailures : public ::testing::EmptyTestEventListener {
   void OnTestPartResult(const ::testing::TestPartResult& r) override {
     if (r.failed())
