@@ -46,6 +46,28 @@ std::vector<std::vector<T>> all_to_all(MPI_Comm comm, const std::vector<std::vec
   return in;
 }
 
+// Collective over `comm`: every rank's `mine` to every rank, by rank.
+template <class T>
+std::vector<std::vector<T>> all_gather(MPI_Comm comm, const std::vector<T>& mine) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  if (mine.size() * sizeof(T) > static_cast<std::size_t>(std::numeric_limits<int>::max() / 2))
+    throw std::length_error("all_gather: a message of more than 1 GiB");
+  const int bytes = static_cast<int>(mine.size() * sizeof(T));
+  const auto n = static_cast<std::size_t>(ranks);
+  std::vector<int> count(n), at(n + 1, 0);
+  MPI_Allgather(&bytes, 1, MPI_INT, count.data(), 1, MPI_INT, comm);
+  for (std::size_t q = 0; q < n; ++q) at[q + 1] = at[q] + count[q];
+  std::vector<T> flat(static_cast<std::size_t>(at[n]) / sizeof(T));
+  MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, flat.data(), count.data(), at.data(), MPI_BYTE, comm);
+  std::vector<std::vector<T>> in(n);
+  for (std::size_t q = 0; q < n; ++q)
+    in[q].assign(flat.begin() + at[q] / static_cast<int>(sizeof(T)),
+                 flat.begin() + at[q + 1] / static_cast<int>(sizeof(T)));
+  return in;
+}
+
 // Collective over `comm`: every rank's `mine` to `root`, which gets them by rank (the others an empty list).
 template <class T>
 std::vector<std::vector<T>> gather_to(MPI_Comm comm, int root, const std::vector<T>& mine) {

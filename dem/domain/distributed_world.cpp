@@ -2,6 +2,7 @@
 #include "domain/distributed_world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -127,6 +128,18 @@ void unpack(const Bytes& in, dynamics::WorldState& s) {
   }
 }
 
+// The box around a body of `shape` at (at, yaw) [m, rad].
+geometry::Aabb box_of(const geometry::ConvexPolygon& shape, const geometry::Vec2& at, double yaw) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  geometry::Aabb b{at, at};
+  for (const geometry::Vec2& v : shape.vertices()) {
+    const geometry::Vec2 p = at + geometry::rotate(v, c, s);
+    b.lo = b.lo.cwiseMin(p);
+    b.hi = b.hi.cwiseMax(p);
+  }
+  return b;
+}
+
 // A state with the scalars of `s` and no rows.
 dynamics::WorldState scalars_of(const dynamics::WorldState& s) {
   dynamics::WorldState out;
@@ -162,12 +175,17 @@ DistributedWorld::DistributedWorld(MPI_Comm comm, const dynamics::WorldSettings&
 void DistributedWorld::place(const dynamics::WorldState* full) {
   // Where each body is (by its place in bodies_): the state's row, else as given.
   std::vector<geometry::Vec2> at(bodies_.size());
+  std::vector<double> yaw(bodies_.size());
   std::vector<int> row(bodies_.size(), -1);
-  for (std::size_t k = 0; k < bodies_.size(); ++k) at[k] = bodies_[k].position;
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    at[k] = bodies_[k].position;
+    yaw[k] = bodies_[k].yaw;
+  }
   if (full)
     for (std::size_t r = 0; r < full->ids.size(); ++r) {
       const std::size_t k = desc_of_.at(full->ids[r]);
       at[k] = full->position[r];
+      yaw[k] = full->yaw[r];
       row[k] = static_cast<int>(r);
     }
   // The partition of the floes (each rank offers a share: every rank knows every body), then each rank's own.
@@ -180,8 +198,7 @@ void DistributedWorld::place(const dynamics::WorldState* full) {
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     if (partition_.rank_of(at[k]) != rank()) continue;
     owned.push_back(bodies_[k].id);
-    const double r = bodies_[k].shape->circumradius();
-    mine.push_back({bodies_[k].id, {at[k] - geometry::Vec2{r, r}, at[k] + geometry::Vec2{r, r}}});
+    mine.push_back({bodies_[k].id, box_of(*bodies_[k].shape, at[k], yaw[k])});
   }
   const HaloLayout layout = halo_layout(comm_, mine, margin_);
   renew_due_ = false;
@@ -258,6 +275,11 @@ void DistributedWorld::build(const std::vector<BodyId>& owned, const HaloLayout&
   for (const BodyId id : owned) w->add_body(bodies_[desc_of_.at(id)]);
   for (const std::vector<BodyId>& ids : layout.recv)
     for (const BodyId id : ids) w->set_ghost(w->add_body(bodies_[desc_of_.at(id)]), true);
+  if (halo_) {
+    retired_.halo_bytes += halo_->bytes_sent();
+    retired_.halo_messages += halo_->messages_sent();
+    retired_.halo_seconds += halo_->seconds();
+  }
   auto halo = std::make_unique<HaloExchange>(comm_, layout);
   w->set_exchange(halo.get());
   if (state) w->restore(*state);
@@ -298,9 +320,11 @@ void DistributedWorld::step(double dt) {
     renew_due_ = false;
   }
   world_->step(dt);
+  const auto t0 = std::chrono::steady_clock::now();
   const double mine = moved();
   double most = 0.0;
   MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  retired_.check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (most > 0.5 * margin_)
     throw std::runtime_error("a floe moved " + std::to_string(most) +
                              " m since the ranks last exchanged their floes (" + std::to_string(renewals_) +
@@ -310,7 +334,21 @@ void DistributedWorld::step(double dt) {
   renew_due_ = most > 0.25 * margin_;
 }
 
+void DistributedWorld::count_sent(const std::vector<std::vector<unsigned char>>& out) {
+  for (std::size_t q = 0; q < out.size(); ++q)
+    if (static_cast<int>(q) != rank()) retired_.renewal_bytes += out[q].size();
+}
+
+DistributedWorld::Communication DistributedWorld::communication() const {
+  Communication c = retired_;
+  c.halo_bytes += halo_->bytes_sent();
+  c.halo_messages += halo_->messages_sent();
+  c.halo_seconds += halo_->seconds();
+  return c;
+}
+
 void DistributedWorld::renew() {
+  const auto t0 = std::chrono::steady_clock::now();
   const dynamics::World& w = *world_;
   const dynamics::WorldState s = w.state();  // rows in id order, owned floes and ghosts
   std::vector<int> own_rows;
@@ -347,6 +385,7 @@ void DistributedWorld::renew() {
   std::vector<Bytes> out(ranks_n);
   for (std::size_t q = 0; q < ranks_n; ++q) pack(s, rows_to[q], history_to[q], out[q]);
   dynamics::WorldState owned = scalars_of(s);
+  count_sent(out);
   const std::vector<Bytes> in = all_to_all(comm_, out);
   for (std::size_t q = 0; q < ranks_n; ++q) {
     const std::size_t before = owned.ids.size();
@@ -357,9 +396,8 @@ void DistributedWorld::renew() {
   std::vector<HaloItem> mine;
   std::unordered_map<BodyId, int> row_of;
   for (std::size_t k = 0; k < owned.ids.size(); ++k) {
-    const double r = bodies_[desc_of_.at(owned.ids[k])].shape->circumradius();
-    mine.push_back(
-        {owned.ids[k], {owned.position[k] - geometry::Vec2{r, r}, owned.position[k] + geometry::Vec2{r, r}}});
+    const geometry::ConvexPolygon& shape = *bodies_[desc_of_.at(owned.ids[k])].shape;
+    mine.push_back({owned.ids[k], box_of(shape, owned.position[k], owned.yaw[k])});
     row_of[owned.ids[k]] = static_cast<int>(k);
   }
   const HaloLayout layout = halo_layout(comm_, mine, margin_);
@@ -370,10 +408,12 @@ void DistributedWorld::renew() {
     pack(owned, rows, {}, out[q]);
   }
   dynamics::WorldState full = owned;
+  count_sent(out);
   for (const Bytes& m : all_to_all(comm_, out)) unpack(m, full);
   std::vector<BodyId> owned_ids = owned.ids;
   build(owned_ids, layout, &full);
   ++renewals_;
+  retired_.renewal_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace polyfloe::domain

@@ -59,6 +59,15 @@ class DistributedWorld {
   // A renewal cuts the regions anew where the largest rank's share of the floes exceeds this x the mean.
   static constexpr double kImbalance = 1.1;
   std::uint64_t migrated() const { return migrated_; }  // floes this rank took over from others, in all renewals
+  // What this rank spent on communication since its construction.
+  struct Communication {
+    std::uint64_t halo_bytes = 0, halo_messages = 0;  // sent by the step's exchanges (HaloExchange)
+    double halo_seconds = 0.0;                        // in the step's exchanges, waiting included [s]
+    std::uint64_t renewal_bytes = 0;                  // sent by the renewals (floes migrating, ghosts' rows)
+    double renewal_seconds = 0.0;                     // in the renewals, the rebuilt World included [s]
+    double check_seconds = 0.0;                       // in the step's test for a renewal (one allreduce) [s]
+  };
+  Communication communication() const;
   int rank() const { return partition_.rank(); }
   // Worker threads of each rank's World (OpenMP; see World::set_threads).
   void set_threads(int threads) {
@@ -74,6 +83,7 @@ class DistributedWorld {
   // A World of `owned` and `ghosts` (ids) with `state` (rows for all of them; none: as the bodies were given).
   void build(const std::vector<dynamics::BodyId>& owned, const HaloLayout& layout, const dynamics::WorldState* state);
   void renew();
+  void count_sent(const std::vector<std::vector<unsigned char>>& out);  // a renewal's messages to the other ranks
   // The farthest any vertex of an owned floe has moved since the last renewal [m] (on this rank).
   double moved() const;
 
@@ -86,6 +96,7 @@ class DistributedWorld {
   std::unique_ptr<dynamics::World> world_;
   std::unique_ptr<HaloExchange> halo_;
   std::uint64_t renewals_ = 0, migrated_ = 0, rebalances_ = 0;
+  Communication retired_;  // the counts of the halos that renewals replaced, and of the renewals
   int threads_ = 1;
   bool renew_due_ = false;
   // The owned floes' poses at the last renewal, by index of the World (re-read by id after it re-stores its bodies).

@@ -5,13 +5,18 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
 namespace polyfloe::domain {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 enum Tag : int { kPoses = 101, kPredictions = 102, kForces = 103 };
 
@@ -32,17 +37,39 @@ HaloLayout halo_layout(MPI_Comm comm, std::span<const HaloItem> owned, double ma
   if (!(margin > 0.0)) throw std::invalid_argument("halo_layout: the margin must be positive");
   const int rank = comm_rank(comm), ranks = comm_size(comm);
   const geometry::Vec2 g{0.5 * margin, 0.5 * margin};
-  // The box around this rank's grown floes, as (lo.x, lo.y, -hi.x, -hi.y): none (+inf) without floes.
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  std::array<double, 4> reach{inf, inf, inf, inf};
-  for (const HaloItem& it : owned) {
-    reach[0] = std::min(reach[0], it.box.lo.x() - g.x());
-    reach[1] = std::min(reach[1], it.box.lo.y() - g.y());
-    reach[2] = std::min(reach[2], -(it.box.hi.x() + g.x()));
-    reach[3] = std::min(reach[3], -(it.box.hi.y() + g.y()));
+  auto grown = [&](const geometry::Aabb& b) { return geometry::Aabb{b.lo - g, b.hi + g}; };
+  // What this rank's grown floes cover, as boxes for the others: the bodies far larger than its typical floe (more
+  // than kLarge x the median size: walls, a giant floe; the kMaxLarge largest) each by its own box, the rest by one
+  // box around them. (One box around all would reach as far as a wall does, and take every floe along it.)
+  std::vector<double> size(owned.size());
+  for (std::size_t k = 0; k < owned.size(); ++k) {
+    const geometry::Vec2 e = owned[k].box.hi - owned[k].box.lo;
+    size[k] = std::max(e.x(), e.y());
   }
-  std::vector<double> all(4 * static_cast<std::size_t>(ranks));
-  MPI_Allgather(reach.data(), 4, MPI_DOUBLE, all.data(), 4, MPI_DOUBLE, comm);
+  std::vector<double> sorted = size;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double large = sorted.empty() ? 0.0 : kLarge * sorted[sorted.size() / 2];
+  std::vector<std::size_t> by_size(owned.size());
+  std::iota(by_size.begin(), by_size.end(), std::size_t{0});
+  std::sort(by_size.begin(), by_size.end(), [&](std::size_t x, std::size_t y) { return size[x] > size[y]; });
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<geometry::Aabb> reach{{{inf, inf}, {-inf, -inf}}};  // the box around the rest first (none: empty)
+  for (std::size_t j = 0; j < by_size.size(); ++j) {
+    const geometry::Aabb b = grown(owned[by_size[j]].box);
+    if (j < kMaxLarge && size[by_size[j]] > large) {
+      reach.push_back(b);
+    } else {
+      reach[0].lo = reach[0].lo.cwiseMin(b.lo);
+      reach[0].hi = reach[0].hi.cwiseMax(b.hi);
+    }
+  }
+  std::vector<std::array<double, 4>> flat;  // (as plain numbers for MPI)
+  for (const geometry::Aabb& b : reach) flat.push_back({b.lo.x(), b.lo.y(), b.hi.x(), b.hi.y()});
+  std::vector<std::vector<geometry::Aabb>> all;
+  for (const std::vector<std::array<double, 4>>& boxes : all_gather(comm, flat)) {
+    all.emplace_back();
+    for (const std::array<double, 4>& e : boxes) all.back().push_back({{e[0], e[1]}, {e[2], e[3]}});
+  }
   std::vector<HaloItem> by_id(owned.begin(), owned.end());
   std::sort(by_id.begin(), by_id.end(), [](const HaloItem& a, const HaloItem& b) { return a.id < b.id; });
   HaloLayout layout;
@@ -50,10 +77,12 @@ HaloLayout halo_layout(MPI_Comm comm, std::span<const HaloItem> owned, double ma
   layout.recv.resize(static_cast<std::size_t>(ranks));
   for (int q = 0; q < ranks; ++q) {
     if (q == rank) continue;
-    const double* e = all.data() + 4 * q;
-    const geometry::Aabb theirs{{e[0], e[1]}, {-e[2], -e[3]}};
-    for (const HaloItem& it : by_id)
-      if (geometry::Aabb{it.box.lo - g, it.box.hi + g}.overlaps(theirs)) layout.send[q].push_back(it.id);
+    const std::vector<geometry::Aabb>& theirs = all[static_cast<std::size_t>(q)];
+    for (const HaloItem& it : by_id) {
+      const geometry::Aabb b = grown(it.box);
+      if (std::any_of(theirs.begin(), theirs.end(), [&](const geometry::Aabb& t) { return b.overlaps(t); }))
+        layout.send[q].push_back(it.id);
+    }
   }
   // Each rank learns which ghosts it holds from the ranks that send them.
   layout.recv = all_to_all(comm, layout.send);
@@ -79,6 +108,7 @@ int HaloExchange::index(const dynamics::World& w, dynamics::BodyId id) const {
 
 template <class Pack, class Unpack>
 void HaloExchange::forward(dynamics::World& w, int tag, Pack&& pack, Unpack&& unpack) {
+  const Clock::time_point t0 = Clock::now();
   const int ranks = static_cast<int>(layout_.send.size());
   requests_.clear();
   for (int q = 0; q < ranks; ++q) {
@@ -101,6 +131,7 @@ void HaloExchange::forward(dynamics::World& w, int tag, Pack&& pack, Unpack&& un
     const std::vector<dynamics::BodyId>& ids = layout_.recv[q];
     for (std::size_t k = 0; k < ids.size(); ++k) unpack(index(w, ids[k]), in_[q].data() + 3 * k);
   }
+  seconds_ += since(t0);
 }
 
 void HaloExchange::poses(dynamics::World& w) {
@@ -132,6 +163,7 @@ void HaloExchange::predictions(dynamics::World& w) {
 void HaloExchange::pair_forces(dynamics::World& w) {
   // To the owners of this rank's ghosts (each of them, also with nothing to send: it waits for a message), from the
   // ranks that hold this rank's floes as ghosts.
+  const Clock::time_point t0 = Clock::now();
   const int ranks = static_cast<int>(layout_.send.size());
   for (auto& f : forces_out_) f.clear();
   for (const dynamics::PairForce& f : w.outgoing_pair_forces()) forces_out_[ghost_owner_.at(f.b)].push_back(f);
@@ -156,6 +188,7 @@ void HaloExchange::pair_forces(dynamics::World& w) {
   }
   MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
   w.take_pair_forces(forces_in_);
+  seconds_ += since(t0);
 }
 
 }  // namespace polyfloe::domain

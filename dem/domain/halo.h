@@ -30,11 +30,16 @@ struct HaloLayout {
       recv;  // by rank: the ghosts this rank holds that rank owns (increasing id)
 };
 
-// Collective over `comm`: the halo of every rank's `owned` floes, their boxes grown by `margin` [m] (> 0): rank q
-// holds a floe of another rank as a ghost where the floe's grown box overlaps the box around q's own grown floes.
-// Two floes whose boxes overlap, each having moved (any vertex) less than margin / 2 since, are then both held by
-// the owner of each: every pair an owner evaluates or receives is a candidate pair of both Worlds.
+// Collective over `comm`: the halo of every rank's `owned` floes, their boxes grown by `margin` / 2 [m] (margin > 0):
+// rank q holds a floe of another rank as a ghost where the floe's grown box overlaps q's reach, boxes that cover
+// q's own grown floes. Two floes whose boxes overlap, each having moved (any vertex) less than margin / 2 since, are
+// then both held by the owner of each: every pair an owner evaluates or receives is a candidate pair of both Worlds.
+// A rank's reach is one box around its grown floes, except for the bodies larger than kLarge x its median floe's size (walls, a giant
+// floe: at most kMaxLarge of them, the largest), each its own box; one box around all would reach as far as a wall
+// does and take every floe along it.
 HaloLayout halo_layout(MPI_Comm comm, std::span<const HaloItem> owned, double margin);
+inline constexpr double kLarge = 8.0;
+inline constexpr std::size_t kMaxLarge = 64;
 
 // The step's exchange of one rank's World under a layout (its ghosts the layout's recv, flagged with
 // World::set_ghost): poses and predicted velocities to the ranks that hold this rank's floes as ghosts, and the
@@ -51,6 +56,9 @@ class HaloExchange : public dynamics::StepExchange {
   // What this rank sent since its construction: bytes and messages (the step's communication volume).
   std::uint64_t bytes_sent() const { return bytes_; }
   std::uint64_t messages_sent() const { return messages_; }
+  // Wall-clock seconds in the exchanges since its construction [s]: packing, sending, waiting for the neighbours
+  // (load imbalance shows here) and unpacking.
+  double seconds() const { return seconds_; }
 
  private:
   // Three doubles per floe, from this rank's floes (`pack`) to the ghosts of the others (`unpack`).
@@ -66,6 +74,7 @@ class HaloExchange : public dynamics::StepExchange {
   std::vector<dynamics::PairForce> forces_in_;
   std::vector<MPI_Request> requests_;
   std::uint64_t bytes_ = 0, messages_ = 0;
+  double seconds_ = 0.0;
 };
 
 }  // namespace polyfloe::domain

@@ -179,6 +179,20 @@ TEST(DistributedCorners, AFloeLargerThanARegion) {
   EXPECT_EQ(sum_over_ranks(i >= 0 && !mine.is_ghost(i) ? 1 : 0), 1u);
 }
 
+TEST(DistributedCorners, WallsAlongTheWholePackDoNotTakeEveryFloeIntoTheHalo) {
+  // A pack of 1,500 floes jammed between four walls as long as its sides: the rank that owns a wall holds as ghosts
+  // the floes along it and near the cuts, not every floe its wall's box would reach as one box with its own floes.
+  const tsupport::Pack pack = tsupport::make_pack(1500, tsupport::PackSpec{}, 7u);
+  domain::DistributedWorld dw(MPI_COMM_WORLD, tsupport::no_drift(), pack.bodies);
+  const dynamics::World& w = dw.local();
+  std::uint64_t ghosts = 0;
+  for (int i = 0; i < static_cast<int>(w.size()); ++i) ghosts += w.is_ghost(i);
+  const std::uint64_t all = sum_over_ranks(ghosts);
+  if (mpi_rank() == 0) std::printf("%llu ghosts on %d ranks\n", static_cast<unsigned long long>(all), mpi_ranks());
+  // Each cut of the 39 x 39 lattice is crossed by about 2 x 39 floe-widths of halo on each side.
+  EXPECT_LE(all, static_cast<std::uint64_t>(200 * (mpi_ranks() - 1)));
+}
+
 TEST(DistributedCorners, EveryFloeCrossingOneCutAtOnce) {
   // Two files of 6 hexagonal floes (0.3 m to the corners), at x = -3 m and x = +3 m, the first running at the second
   // at 2 m/s: the field is wider than high, so the first cut parts the files; every floe of the first file crosses
