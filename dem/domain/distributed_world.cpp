@@ -305,8 +305,7 @@ double DistributedWorld::moved() const {
   double most = 0.0;
   for (int i = 0; i < n; ++i) {
     if (w.is_ghost(i)) continue;
-    const double d =
-        (w.positions()[i] - pos_at_[i]).norm() + std::abs(w.yaws()[i] - yaw_at_[i]) * w.shape(i).circumradius();
+    const double d = (w.positions()[i] - pos_at_[i]).norm() + std::abs(w.yaws()[i] - yaw_at_[i]) * w.reach(i);
     most = std::max(most, d);
   }
   return most;
@@ -320,6 +319,7 @@ void DistributedWorld::step(double dt) {
     renew_due_ = false;
   }
   world_->step(dt);
+  if (ranks() == 1) return;  // no halo to renew
   const auto t0 = std::chrono::steady_clock::now();
   const double mine = moved();
   double most = 0.0;

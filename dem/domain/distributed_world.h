@@ -36,8 +36,9 @@ class DistributedWorld {
   DistributedWorld& operator=(const DistributedWorld&) = delete;
 
   // Collective: one step of dt [s]. The halo is renewed first where, after the last step, some floe had moved more
-  // than a quarter of the margin since the last renewal. Throws std::runtime_error (on every rank) when a floe moved more than half the
-  // margin within the steps since: pairs could then have been missed, and the time step is far too large.
+  // than a quarter of the margin since the last renewal. Throws std::runtime_error (on every rank) when a floe moved
+  // more than half the margin within the steps since: pairs could then have been missed, and the time step is far
+  // too large. One rank has no halo: nothing is tested or renewed.
   void step(double dt);
 
   // Collective: the whole ice's state on rank `root` (every floe's rows in id order, every contact history in key

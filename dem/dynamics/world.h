@@ -160,6 +160,7 @@ class World {
   std::span<const int> id_order() const;
   const geometry::ConvexPolygon& shape(int i) const { return *bodies_.shape[i]; }
   double thickness(int i) const { return bodies_.thickness[i]; }  // [m]
+  double reach(int i) const { return bodies_.reach[i]; }          // the shape's circumradius about its centroid [m]
   double draft(int i) const { return bodies_.draft[i]; }          // floating draft h rho_ice / rho_w, at most h [m]
   double mass(int i) const { return bodies_.mass[i]; }            // [kg] (of the prism, also for walls)
   double inertia(int i) const { return bodies_.inertia[i]; }      // [kg m^2]

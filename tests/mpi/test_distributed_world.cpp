@@ -12,7 +12,7 @@
 //     every floe crossing one cut within the same few steps (two files of floes that meet head on where the ranks'
 //     regions part, all of them migrating, the regions then cut anew): bitwise as one World;
 //   - a floe that moves more than half the margin between two renewals stops the run on every rank with a message
-//     that says so (and that the time step is far too large).
+//     that says so (and that the time step is far too large); one rank has no halo and does not test it.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -81,7 +81,9 @@ TEST_P(Distributed, FloesMigrateAndMoveBitwiseAsInOneWorld) {
     contacts_seen += one.contact_count();
     ASSERT_EQ(all[1], one.contact_count()) << "step " << step;  // each pair evaluated by one rank
   }
-  EXPECT_GE(dw.renewals(), 3u);
+  if (mpi_ranks() > 1) {
+    EXPECT_GE(dw.renewals(), 3u);
+  }
   std::uint64_t migrated = dw.migrated(), all_migrated = 0;
   MPI_Allreduce(&migrated, &all_migrated, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
   // Floes changed ranks (in the gas at 3 and 4 ranks; at 2 the one cut lies in a wide gap of the gas's lattice, and
@@ -294,6 +296,10 @@ TEST(DistributedRefuses, AFloeOutrunningTheHalo) {
   tsupport::Pack pack = tsupport::make_pack(60, ps, 4u);
   pack.bodies[7].velocity = {20.0, 0.0};  // [m/s]: 2 mm in one step of 0.1 ms
   domain::DistributedWorld dw(MPI_COMM_WORLD, tsupport::no_drift(), pack.bodies, 0.001);
+  if (mpi_ranks() == 1) {  // one rank has no halo: nothing to miss, nothing to test
+    EXPECT_NO_THROW(dw.step(1e-4));
+    return;
+  }
   try {
     dw.step(1e-4);
     ADD_FAILURE() << "no error";
