@@ -80,7 +80,6 @@ polyfloe "weak_1x1" 1 1 --floes "$half" --per-rank
 polyfloe "weak_2x1" 2 1 --floes "$half" --per-rank
 
 # LAMMPS's disks on 1 and 2 ranks: the 10 x 10 replication of the 1.6k pack (160k disks), as bench_lammps.sh.
-bash scripts/setup.sh bench >/dev/null
 for ranks in 1 2; do
   values=()
   for ((k = 0; k < REPS; ++k)); do
