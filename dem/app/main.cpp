@@ -24,6 +24,9 @@
 #include <CLI/CLI.hpp>
 
 #include "dynamics/parallel.h"
+#ifdef POLYFLOE_MPI
+#include "mpi/distributed_run.h"
+#endif
 #include "forcing/field.h"
 #include "geometry/polygon.h"
 #include "run/output_folder.h"
@@ -264,47 +267,48 @@ void report(const scene::Scene& sc, const run::RunSummary& s) {
   if (sc.output.hdf5) std::cout << "  results.h5               (time series; see docs/user-guide.md)\n";
 }
 
-// `polyfloe run` of a scene whose world (planar or spatial) is built: the options, the restart's checkpoint checked
-// against the world and the interrupted run's outputs before any file is touched (a bad checkpoint is bad input),
-// then the run.
-template <class W>
-int run_world(const Args& args, const scene::Scene& sc, W world, const scene::FieldStatistics* field) {
+// What a run starts from: its options, and a restart's checkpoint with what changed in the scene since.
+struct RunStart {
   run::RunOptions opt;
+  std::optional<run::Checkpoint> restart;
+  std::filesystem::path restart_file;
+  std::string scene_changes;  // what differs from the checkpointed run's resolved scene, as a line diff
+};
+
+// The options, the restart's checkpoint read and the output folder checked, before any file is touched. Throws
+// CheckpointError, OutputFolderError, SceneError (bad input) or std::exception.
+RunStart prepare_run(const Args& args, const scene::Scene& sc, int default_threads) {
+  RunStart r;
+  run::RunOptions& opt = r.opt;
   opt.output_dir = args.output.empty() ? std::filesystem::path("results") / sc.name : args.output;
-  opt.threads = args.threads > 0 ? args.threads : std::clamp(polyfloe_default_threads(), 1, 1024);
+  opt.threads = args.threads > 0 ? args.threads : default_threads;
   opt.interactive = isatty(fileno(stderr)) != 0;
   opt.profile = args.profile;
   opt.version = POLYFLOE_VERSION;
-  std::optional<run::BasicSimulation<W>> sim;
-  try {
-    std::optional<run::Checkpoint> restart;
-    std::filesystem::path restart_file;
-    std::string scene_changes;  // what differs from the checkpointed run's resolved scene, as a line diff
-    if (!args.restart.empty()) {
-      restart_file = run::find_checkpoint(args.restart);
-      restart = run::read_checkpoint(restart_file);
-      if (sc.time.duration < restart->time() * (1.0 - 1e-12)) {
-        std::ostringstream why;
-        why << "run.duration = " << sc.time.duration << " s ends before the checkpoint " << restart_file.string()
-            << " (t = " << restart->time() << " s): a restart goes on from a checkpoint, it cannot take back "
-            << "frames already written; for a shorter run, run afresh into another folder (-o DIR)";
-        throw scene::SceneError(why.str());
-      }
-      const std::filesystem::path folder = restart_file.parent_path();
-      if (args.output.empty() && folder.filename() == "checkpoints") opt.output_dir = folder.parent_path();
-      const std::string now = scene::resolved_yaml(sc);
-      if (restart->scene_resolved != now) scene_changes = changed_lines(restart->scene_resolved, now);
+  if (!args.restart.empty()) {
+    r.restart_file = run::find_checkpoint(args.restart);
+    r.restart = run::read_checkpoint(r.restart_file);
+    if (sc.time.duration < r.restart->time() * (1.0 - 1e-12)) {
+      std::ostringstream why;
+      why << "run.duration = " << sc.time.duration << " s ends before the checkpoint " << r.restart_file.string()
+          << " (t = " << r.restart->time() << " s): a restart goes on from a checkpoint, it cannot take back "
+          << "frames already written; for a shorter run, run afresh into another folder (-o DIR)";
+      throw scene::SceneError(why.str());
     }
-    opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
-    run::OutputFolder::check(opt.output_dir);
-    sim.emplace(sc, std::move(world), opt, std::move(restart), restart_file);
-    if (!scene_changes.empty())
-      std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "
-                   "an uninterrupted run of either. Changed lines:\n"
-                << scene_changes;
-    if (!restart_file.empty())
-      std::cerr << "polyfloe: restarting from " << restart_file.string() << " (t = " << sim->world().time()
-                << " s, step " << sim->world().step_count() << ")\n";
+    const std::filesystem::path folder = r.restart_file.parent_path();
+    if (args.output.empty() && folder.filename() == "checkpoints") opt.output_dir = folder.parent_path();
+    const std::string now = scene::resolved_yaml(sc);
+    if (r.restart->scene_resolved != now) r.scene_changes = changed_lines(r.restart->scene_resolved, now);
+  }
+  opt.output_dir = run::OutputFolder::resolve(opt.output_dir);
+  run::OutputFolder::check(opt.output_dir);
+  return r;
+}
+
+// The exit code of what a run's setup threw, its message on stderr.
+int setup_failed(const Args& args, std::exception_ptr failed) {
+  try {
+    std::rethrow_exception(failed);
   } catch (const run::CheckpointError& e) {
     std::cerr << "polyfloe: error: " << e.what() << "\n";
     return run::kExitBadInput;
@@ -318,18 +322,90 @@ int run_world(const Args& args, const scene::Scene& sc, W world, const scene::Fi
     std::cerr << "polyfloe: error: " << e.what() << "\n";
     return run::kExitFailure;
   }
+}
+
+// The notes a restart prints before it runs.
+void restart_notes(const RunStart& r, double t, std::uint64_t step) {
+  if (!r.scene_changes.empty())
+    std::cerr << "polyfloe: note: the scene differs from the checkpointed run's; the result will not be that of "
+                 "an uninterrupted run of either. Changed lines:\n"
+              << r.scene_changes;
+  if (!r.restart_file.empty())
+    std::cerr << "polyfloe: restarting from " << r.restart_file.string() << " (t = " << t << " s, step " << step
+              << ")\n";
+}
+
+// The run's first line: the scene, its size and step, the ranks and threads, where the output goes.
+void first_line(const scene::Scene& sc, std::size_t bodies, bool planar, double dt, const RunStart& r, int ranks) {
+  const int threads = r.opt.threads;
+  std::cerr << "polyfloe: " << sc.name << ": " << bodies << (planar ? " bodies, " : " spatial bodies, ")
+            << sc.time.duration << " s simulated, dt = " << dt << " s, ";
+  if (ranks > 0) std::cerr << ranks << (ranks == 1 ? " MPI rank x " : " MPI ranks x ");
+  std::cerr << threads << (threads == 1 ? " thread" : " threads") << (ranks > 0 ? " each" : "") << " -> "
+            << r.opt.output_dir.string() << "\n";
+}
+
+// `polyfloe run` of a scene whose world (planar or spatial) is built: the options, the restart's checkpoint checked
+// against the world and the interrupted run's outputs before any file is touched (a bad checkpoint is bad input),
+// then the run.
+template <class W>
+int run_world(const Args& args, const scene::Scene& sc, W world, const scene::FieldStatistics* field) {
+  std::optional<run::BasicSimulation<W>> sim;
+  RunStart start;
+  try {
+    start = prepare_run(args, sc, std::clamp(polyfloe_default_threads(), 1, 1024));
+    sim.emplace(sc, std::move(world), start.opt, std::move(start.restart), start.restart_file);
+    restart_notes(start, sim->world().time(), sim->world().step_count());
+  } catch (...) {
+    return setup_failed(args, std::current_exception());
+  }
 
   return guarded_run([&] {
-    std::cerr << "polyfloe: " << sc.name << ": " << sim->world().size()
-              << (std::is_same_v<W, dynamics::World> ? " bodies, " : " spatial bodies, ") << sc.time.duration
-              << " s simulated, dt = " << sim->dt() << " s, " << opt.threads
-              << (opt.threads == 1 ? " thread" : " threads") << " -> " << opt.output_dir.string() << "\n";
+    first_line(sc, sim->world().size(), std::is_same_v<W, dynamics::World>, sim->dt(), start, 0);
     if (field && sc.floe_field && args.restart.empty())
       std::cerr << "polyfloe: floe field: " << scene::to_string(*field) << "\n";
     report<W>(sc, sim->run());
     return run::kExitOk;
   });
 }
+
+#ifdef POLYFLOE_MPI
+// `polyfloe run` under mpirun: the planar world cut among the ranks (mpi/distributed_run.h); every rank has built
+// the same world from the scene, and stops with the same exit code.
+int run_distributed(const Args& args, const scene::Scene& sc, dynamics::World world,
+                    std::vector<dynamics::BodyDesc> descs, const scene::FieldStatistics& field) {
+  MPI_Comm comm = MPI_COMM_WORLD;
+  std::optional<mpi::DistributedRun> sim;
+  RunStart start;
+  // Under mpirun one thread per rank unless asked (--threads, OMP_NUM_THREADS): the ranks take the cores.
+  const int threads = std::getenv("OMP_NUM_THREADS") ? std::clamp(polyfloe_default_threads(), 1, 1024) : 1;
+  int code = 0;
+  try {
+    start = prepare_run(args, sc, threads);
+  } catch (...) {
+    code = setup_failed(args, std::current_exception());
+  }
+  if ((code = mpi::agree(comm, code)) != 0) return code;
+  try {
+    sim.emplace(comm, sc, std::move(world), std::move(descs), start.opt, std::move(start.restart), start.restart_file);
+    restart_notes(start, sim->start_time(), sim->start_step());
+  } catch (const mpi::PeerStopped&) {
+    code = 0;
+  } catch (...) {
+    code = setup_failed(args, std::current_exception());
+  }
+  if ((code = mpi::agree(comm, code)) != 0) return code;
+
+  code = guarded_run([&] {
+    first_line(sc, sim->size(), true, sim->dt(), start, sim->ranks());
+    if (sc.floe_field && args.restart.empty()) std::cerr << "polyfloe: floe field: " << scene::to_string(field) << "\n";
+    const run::RunSummary s = sim->run();
+    if (sim->rank() == 0) report<dynamics::World>(sc, s);
+    return run::kExitOk;
+  });
+  return mpi::agree(comm, code);
+}
+#endif
 
 }  // namespace
 
@@ -369,7 +445,11 @@ int main(int argc, char** argv) {
     return run::kExitBadInput;
   }
 
+#ifdef POLYFLOE_MPI
+  mpi::Session mpi(argc, argv);
+#endif
   // Bad input is found here, before any output is created.
+  std::vector<dynamics::BodyDesc> descs;  // under mpirun: the bodies as the world was given them
   scene::Scene sc;
   std::optional<dynamics::World> world;
   std::optional<dynamics::SpatialWorld> spatial;
@@ -379,7 +459,11 @@ int main(int argc, char** argv) {
     if (sc.spatial)
       spatial.emplace(build_spatial(args, sc));
     else
+#ifdef POLYFLOE_MPI
+      world.emplace(scene::build_world(sc, &field, mpi.active() ? &descs : nullptr));
+#else
       world.emplace(scene::build_world(sc, &field));
+#endif
     const double dt = spatial ? scene::time_step(sc, *spatial) : scene::time_step(sc, *world);
     if (!(dt > 0.0) || !std::isfinite(dt))
       throw scene::SceneError(args.scene + ": cannot derive a time step (no dynamic body?); set run.dt");
@@ -396,6 +480,17 @@ int main(int argc, char** argv) {
     std::cerr << "polyfloe: error: " << e.what() << "\n";
     return run::kExitFailure;
   }
+#ifdef POLYFLOE_MPI
+  if (mpi.active() && args.command == "run") {
+    if (spatial) {
+      std::cerr << "polyfloe: error: " << args.scene
+                << ": a spatial scene (spatial:) does not run across MPI ranks: run it in one process (without "
+                   "mpirun), with --threads N for the cores\n";
+      return run::kExitBadInput;
+    }
+    return run_distributed(args, sc, std::move(*world), std::move(descs), field);
+  }
+#endif
   if (spatial) return args.command == "check" ? check(sc, *spatial) : run_world(args, sc, std::move(*spatial), nullptr);
   return args.command == "check" ? check(sc, *world, field) : run_world(args, sc, std::move(*world), &field);
 }

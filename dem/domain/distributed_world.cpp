@@ -266,6 +266,52 @@ std::optional<dynamics::WorldState> DistributedWorld::gather(int root) const {
   return full;
 }
 
+namespace {
+
+// A contact record as plain numbers (Eigen's vectors are not trivially copyable), for the gather.
+struct ContactWire {
+  BodyId a, b;
+  double normal[2], point[2], depth, area, normal_force, tangential_force, force[2], energy;
+  std::uint64_t sliding;
+};
+
+}  // namespace
+
+std::vector<DistributedWorld::Contact> DistributedWorld::gather_contacts(int root) const {
+  const dynamics::World& w = *world_;
+  std::vector<ContactWire> mine;
+  for (const dynamics::ContactRecord& r : w.contacts()) {
+    const dynamics::ContactGeometry& g = r.geometry;
+    mine.push_back({w.id(r.a),
+                    w.id(r.b),
+                    {g.normal.x(), g.normal.y()},
+                    {g.point.x(), g.point.y()},
+                    g.depth,
+                    g.area,
+                    r.normal_force,
+                    r.tangential_force,
+                    {r.force.x(), r.force.y()},
+                    r.energy,
+                    r.sliding ? 1u : 0u});
+  }
+  std::vector<Contact> all;
+  for (const std::vector<ContactWire>& from : gather_to(comm_, root, mine))
+    for (const ContactWire& c : from) {
+      Contact k{c.a, c.b, {}};
+      dynamics::ContactRecord& r = k.record;
+      r.geometry = {{c.normal[0], c.normal[1]}, {c.point[0], c.point[1]}, c.depth, c.area};
+      r.normal_force = c.normal_force;
+      r.tangential_force = c.tangential_force;
+      r.sliding = c.sliding != 0;
+      r.force = {c.force[0], c.force[1]};
+      r.energy = c.energy;
+      all.push_back(k);
+    }
+  std::sort(all.begin(), all.end(),
+            [](const Contact& x, const Contact& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+  return all;
+}
+
 DistributedWorld::~DistributedWorld() = default;
 
 void DistributedWorld::build(const std::vector<BodyId>& owned, const HaloLayout& layout,
@@ -326,11 +372,10 @@ void DistributedWorld::step(double dt) {
   MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, comm_);
   retired_.check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (most > 0.5 * margin_)
-    throw std::runtime_error("a floe moved " + std::to_string(most) +
-                             " m since the ranks last exchanged their floes (" + std::to_string(renewals_) +
-                             " renewals, step " + std::to_string(world_->step_count()) +
-                             "): more than half the halo's margin, " + std::to_string(margin_) +
-                             " m, so contacts across ranks may have been missed. The time step is far too large.");
+    throw CollectiveError("a floe moved " + std::to_string(most) + " m since the ranks last exchanged their floes (" +
+                          std::to_string(renewals_) + " renewals, step " + std::to_string(world_->step_count()) +
+                          "): more than half the halo's margin, " + std::to_string(margin_) +
+                          " m, so contacts across ranks may have been missed. The time step is far too large.");
   renew_due_ = most > 0.25 * margin_;
 }
 

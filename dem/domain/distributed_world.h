@@ -6,8 +6,8 @@
 // halo is renewed: each floe migrates to the rank of its region with its state and the histories of the contacts it
 // evaluates (the regions cut anew first where the ranks' shares have drifted apart), and the ghosts are chosen anew.
 //
-// Not yet: bonds (a scene with frozen ice is refused), fixed or kinematic bodies other than as ghosts' partners (any
-// motion works; walls are owned like floes), and output gathered from the ranks.
+// Output: gather() and gather_contacts() give one rank the whole ice (what one World holding every floe would
+// hold), for the run's writers. Not yet: bonds (a scene with frozen ice is refused).
 #pragma once
 
 #include <mpi.h>
@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
@@ -23,6 +24,13 @@
 #include "dynamics/world.h"
 
 namespace polyfloe::domain {
+
+// An error thrown on every rank together (the ranks agreed on it in a collective): each rank may stop on it
+// without leaving another waiting.
+class CollectiveError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 class DistributedWorld {
  public:
@@ -38,7 +46,7 @@ class DistributedWorld {
   // Collective: one step of dt [s]. The halo is renewed first where, after the last step, some floe had moved more
   // than a quarter of the margin since the last renewal. Throws std::runtime_error (on every rank) when a floe moved
   // more than half the margin within the steps since: pairs could then have been missed, and the time step is far
-  // too large. One rank has no halo: nothing is tested or renewed.
+  // too large (a CollectiveError). One rank has no halo: nothing is tested or renewed.
   void step(double dt);
 
   // Collective: the whole ice's state on rank `root` (every floe's rows in id order, every contact history in key
@@ -50,6 +58,15 @@ class DistributedWorld {
   // taking their rows and histories from it. Throws std::invalid_argument (on every rank) where the state does not
   // fit the bodies, naming what; bonds are refused.
   void restore(const dynamics::WorldState& full);
+  // A contact of the last evaluation, by the ids of its bodies (a < b; the record's indices are those of the rank
+  // that evaluated it).
+  struct Contact {
+    dynamics::BodyId a = 0, b = 0;
+    dynamics::ContactRecord record;
+  };
+  // Collective: the contacts of the last evaluation on rank `root`, each pair once (from the rank that evaluated
+  // it), in order of the pairs' ids as one World's contacts() lists them; none on the other ranks.
+  std::vector<Contact> gather_contacts(int root = 0) const;
 
   // This rank's World: its own floes and its ghosts (World::is_ghost).
   const dynamics::World& local() const { return *world_; }

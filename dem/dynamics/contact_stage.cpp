@@ -287,11 +287,19 @@ const ContactSum::Totals& PlanarContactStage::sum(const PlanarContactInput& in, 
 }
 
 void PlanarContactStage::list_contacts(std::span<const SlotStatic> statics, std::vector<ContactRecord>& out) const {
-  out.clear();
+  // In order of the pairs' ids (a's, then b's): one order whatever the bodies' storage, threads or ranks.
+  std::vector<std::size_t> listed;
   for (std::size_t p = 0; p < results_.size(); ++p)
-    if (const PairResult& r = results_[p]; hit_[p] == 1)
-      out.push_back(
-          {statics[r.a].body, statics[r.b].body, r.g, r.cf.normal, r.cf.tangential, r.cf.sliding, r.f, r.energy});
+    if (hit_[p] == 1) listed.push_back(p);
+  auto key = [&](std::size_t p) { return std::make_pair(statics[results_[p].a].id, statics[results_[p].b].id); };
+  std::sort(listed.begin(), listed.end(), [&](std::size_t x, std::size_t y) { return key(x) < key(y); });
+  out.clear();
+  out.reserve(listed.size());
+  for (const std::size_t p : listed) {
+    const PairResult& r = results_[p];
+    out.push_back(
+        {statics[r.a].body, statics[r.b].body, r.g, r.cf.normal, r.cf.tangential, r.cf.sliding, r.f, r.energy});
+  }
 }
 
 }  // namespace polyfloe::dynamics

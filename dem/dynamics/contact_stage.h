@@ -88,7 +88,7 @@ class PlanarContactStage {
   std::size_t candidates() const { return pairs_.size(); }                  // of the last find_pairs()
   const Vec2& slot_force(int slot) const { return sum_.slot_force(slot); }  // [N], of the last evaluate()
   double slot_torque(int slot) const { return sum_.slot_torque(slot); }     // [N m]
-  // The last evaluation's touching pairs as records, in pair order (`statics` as it read them).
+  // The last evaluation's touching pairs as records, in order of their ids (`statics` as it read them).
   void list_contacts(std::span<const SlotStatic> statics, std::vector<ContactRecord>& out) const;
 
   // Each thread's place in the contact history (ContactCache::previous with a hint), a cache line apart.

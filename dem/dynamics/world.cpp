@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <numbers>
 #include <string>
+#include <utility>
 
 namespace polyfloe::dynamics {
 
@@ -422,6 +423,15 @@ void World::contact_forces(double dt) {
   profile_.candidates += contact_stage_.candidates();
   profile_.contacts += contact_count_;
   profile_.narrow_and_law += std::chrono::duration<double>(clock::now() - t1).count();
+}
+
+void World::show_contacts(std::vector<ContactRecord> records) {
+  auto key = [this](const ContactRecord& r) { return std::make_pair(bodies_.id[r.a], bodies_.id[r.b]); };
+  std::sort(records.begin(), records.end(),
+            [&](const ContactRecord& x, const ContactRecord& y) { return key(x) < key(y); });
+  contacts_ = std::move(records);
+  contacts_ready_ = true;
+  contact_count_ = contacts_.size();
 }
 
 const std::vector<ContactRecord>& World::contacts() const {

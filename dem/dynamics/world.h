@@ -203,8 +203,13 @@ class World {
   void take_pair_forces(std::span<const PairForce> in);
 
   // --- contacts of the last force evaluation ---
-  // Listed from the last evaluation when first asked for after it (not safe to call from several threads at once).
+  // Listed from the last evaluation when first asked for after it (not safe to call from several threads at once),
+  // in order of the pairs' ids (a's, then b's), whatever the storage order, threads or ranks.
   const std::vector<ContactRecord>& contacts() const;
+  // A World that shows ice stepped elsewhere (a domain decomposition's state, gathered and restore()d here): the
+  // contacts that were evaluated there, with this World's indices, listed by contacts() until the next evaluation
+  // or restore(). Sorted here into contacts()'s order.
+  void show_contacts(std::vector<ContactRecord> records);
   std::size_t contact_count() const { return contact_count_; }
   const contact::ContactCache& contact_cache() const { return cache_; }
   // Pairs the 2-D GJK-EPA narrow phase failed on (measured by the exact method instead), since the start.

@@ -45,6 +45,13 @@ class BasicRunOutputs {
   void start(W& world, const std::optional<Checkpoint>& restart);
   // After each step: the velocity grid's sample, and the frame and checkpoint that fall due.
   void after_step(const W& world);
+  // Whether after_step() at time t [s] reads the world (a sample, a frame or a checkpoint is due); when not, it may
+  // be left out (a world stepped elsewhere need not be brought here).
+  bool wants_world(double t) const {
+    if constexpr (kPlanar)
+      if (velocity_grid_ && velocity_grid_->due(t)) return true;
+    return schedule_.frame_due(t);
+  }
   // An unstable run's state in DIR/checkpoints/unstable.h5 (when checkpoints are on): what to tell the user.
   std::string save_unstable(const W& world);
   // results.xmf at the end.

@@ -33,26 +33,6 @@ using geometry::Vec2;
 
 namespace {
 
-// The velocity grid the scene asks for (its region, or every body at t = 0), checked against the size limit.
-GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const dynamics::World& world) {
-  GridGeometry geo;
-  if (g.region) {
-    const auto& r = *g.region;
-    geo.x0 = r[0];
-    geo.y0 = r[1];
-    geo.cell = g.cell;
-    geo.nx = static_cast<int>(std::max(1.0, std::ceil((r[2] - r[0]) / g.cell)));
-    geo.ny = static_cast<int>(std::max(1.0, std::ceil((r[3] - r[1]) / g.cell)));
-    return geo;
-  }
-  // The automatic region: every body at t = 0 (covering() refuses a grid past the size limit).
-  return VelocityGrid::covering(world, g.cell);
-}
-
-}  // namespace
-
-namespace {
-
 // The lines of the `output` block of a resolved scene, without its checkpoint settings (which a restart may change).
 std::string output_block(const std::string& resolved) {
   std::string out, line;
@@ -110,40 +90,24 @@ BasicSimulation<W>::BasicSimulation(const scene::Scene& scene, W world, const Ru
       grid_geometry_ = velocity_grid_geometry(grid_settings, world_);  // may refuse before any output exists
   }
   if (!restart) return;
-
-  const Checkpoint& c = *restart;
-  const std::string where = "checkpoint " + restart_file.string() + ": ";
-  check_restart(c, restart_file, world_);
-  if (output_block(c.scene_resolved) != output_block(scene::resolved_yaml(scene_)))
-    throw CheckpointError(where +
-                          "the scene's output settings differ from those of the interrupted run; a restart "
-                          "continues its output series, so they must be the same (output.checkpoint may change)");
-  try {  // the state first: what is wrong with it is wrong whatever folder the restart is given
-    if constexpr (kPlanar<W>)
-      world_.restore(c.world);
-    else
-      world_.restore(*c.spatial);
-  } catch (const std::invalid_argument& e) {
-    throw CheckpointError(where + e.what());
-  }
-  check_restart_outputs(c, restart_file);
-  if (scene_.channel && !c.channel)
-    throw CheckpointError(where + "has no channel monitor state; the scene has a channel");
-  if (grid_geometry_ && !c.next_sample)
-    throw CheckpointError(where + "has no velocity grid state; the scene has a grid");
+  restart_results_ =
+      take_checkpoint(scene_, world_, *restart, restart_file, options_.output_dir, grid_geometry_.has_value());
   restart_ = std::move(restart);
 }
 
+namespace {
+
 // The interrupted run's outputs that a restart continues: the results holding the checkpoint's frames (the file a
 // killed restart left aside, else results.h5, else the copy taken with the checkpoints, for a results.h5 the kill
-// left unreadable), and the VTK frame of the checkpoint.
-template <class W>
-void BasicSimulation<W>::check_restart_outputs(const Checkpoint& c, const std::filesystem::path& restart_file) {
+// left unreadable), which it returns, and the VTK frame of the checkpoint.
+std::filesystem::path check_restart_outputs(const scene::Scene& scene_, const Checkpoint& c,
+                                            const std::filesystem::path& restart_file, const std::filesystem::path& dir,
+                                            bool planar) {
   namespace fs = std::filesystem;
   const std::string where = "checkpoint " + restart_file.string() + ": ";
-  const fs::path dir = options_.output_dir;
   std::error_code ec;
   const int frames = c.frames;
+  fs::path restart_results_;
   if (scene_.output.hdf5) {
     std::string why;
     for (const fs::path& previous : {dir / kInterruptedResults, dir / "results.h5", dir / kResultsSnapshot}) {
@@ -178,14 +142,43 @@ void BasicSimulation<W>::check_restart_outputs(const Checkpoint& c, const std::f
   }
   if (scene_.output.vtk) {
     char name[40];
-    if constexpr (kPlanar<W>)
-      std::snprintf(name, sizeof name, "floes/floes_%06d.vtp", frames - 1);
-    else
-      std::snprintf(name, sizeof name, "bodies/bodies_%06d.vtp", frames - 1);
+    std::snprintf(name, sizeof name, planar ? "floes/floes_%06d.vtp" : "bodies/bodies_%06d.vtp", frames - 1);
     if (!fs::exists(dir / name, ec))
       throw CheckpointError(where + "the interrupted run's frame " + (dir / name).string() + " is missing");
   }
+  return restart_results_;
 }
+
+}  // namespace
+
+template <class W>
+std::filesystem::path take_checkpoint(const scene::Scene& scene, W& world, const Checkpoint& c,
+                                      const std::filesystem::path& file, const std::filesystem::path& dir, bool grid) {
+  const std::string where = "checkpoint " + file.string() + ": ";
+  check_restart(c, file, world);
+  if (output_block(c.scene_resolved) != output_block(scene::resolved_yaml(scene)))
+    throw CheckpointError(where +
+                          "the scene's output settings differ from those of the interrupted run; a restart "
+                          "continues its output series, so they must be the same (output.checkpoint may change)");
+  try {  // the state first: what is wrong with it is wrong whatever folder the restart is given
+    if constexpr (kPlanar<W>)
+      world.restore(c.world);
+    else
+      world.restore(*c.spatial);
+  } catch (const std::invalid_argument& e) {
+    throw CheckpointError(where + e.what());
+  }
+  std::filesystem::path results = check_restart_outputs(scene, c, file, dir, kPlanar<W>);
+  if (scene.channel && !c.channel)
+    throw CheckpointError(where + "has no channel monitor state; the scene has a channel");
+  if (grid && !c.next_sample) throw CheckpointError(where + "has no velocity grid state; the scene has a grid");
+  return results;
+}
+
+template std::filesystem::path take_checkpoint(const scene::Scene&, dynamics::World&, const Checkpoint&,
+                                               const std::filesystem::path&, const std::filesystem::path&, bool);
+template std::filesystem::path take_checkpoint(const scene::Scene&, dynamics::SpatialWorld&, const Checkpoint&,
+                                               const std::filesystem::path&, const std::filesystem::path&, bool);
 
 namespace {
 

@@ -78,6 +78,14 @@ struct FrameClock {
   std::string note(double dt) const;
 };
 
+// A restart's checks and state, before any file is touched: the checkpoint `c` (read from `file`) against the scene
+// and `world` (built from it), its state restored into `world`, and the interrupted run's outputs in `dir`. Returns
+// the results file the restart copies the frames from (see kResultsSnapshot; empty without HDF5 output). `grid`:
+// the run writes a velocity grid. Throws CheckpointError (bad input: exit 2). W: dynamics::World or SpatialWorld.
+template <class W>
+std::filesystem::path take_checkpoint(const scene::Scene& scene, W& world, const Checkpoint& c,
+                                      const std::filesystem::path& file, const std::filesystem::path& dir, bool grid);
+
 // The driver of both worlds (W: dynamics::World, the planar one, or dynamics::SpatialWorld): the same end-time and
 // frame rule (FrameClock), outputs (run/run_outputs.h), checkpoints and restart, threads, guard, progress and
 // profile. What only a planar scene has (the channel monitor, the velocity grid, results.xmf) is absent from a
@@ -98,7 +106,6 @@ class BasicSimulation {
   double dt() const { return dt_; }
 
  private:
-  void check_restart_outputs(const Checkpoint& c, const std::filesystem::path& restart_file);
   // After each step: the run guard on the step's report, and a spatial run's contact count.
   void guard(const dynamics::StepReport& report);
 

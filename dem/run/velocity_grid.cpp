@@ -5,8 +5,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "scene/scene.h"
-
 namespace polyfloe::run {
 
 using geometry::Vec2;
@@ -167,7 +165,7 @@ VelocityGridRecorder::VelocityGridRecorder(const GridGeometry& grid, double samp
 
 void VelocityGridRecorder::after_step(const dynamics::World& world) {
   const double t = world.time();
-  if (t < next_sample_ * (1.0 - 1e-12)) return;
+  if (!due(t)) return;
   grid_.sample(world);
   next_sample_ = interval_ * (std::floor(t / interval_ * (1.0 + 1e-12)) + 1.0);
 }
@@ -194,6 +192,21 @@ void VelocityGridRecorder::write_frame(const dynamics::World& world) {
     const std::int32_t n = f.samples;
     h5_samples_->append_rows<std::int32_t>({&n, 1}, 1);
   }
+}
+
+GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const dynamics::World& world) {
+  GridGeometry geo;
+  if (g.region) {
+    const auto& r = *g.region;
+    geo.x0 = r[0];
+    geo.y0 = r[1];
+    geo.cell = g.cell;
+    geo.nx = static_cast<int>(std::max(1.0, std::ceil((r[2] - r[0]) / g.cell)));
+    geo.ny = static_cast<int>(std::max(1.0, std::ceil((r[3] - r[1]) / g.cell)));
+    return geo;
+  }
+  // The automatic region: every body at t = 0 (covering() refuses a grid past the size limit).
+  return VelocityGrid::covering(world, g.cell);
 }
 
 }  // namespace polyfloe::run

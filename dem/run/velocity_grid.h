@@ -17,10 +17,15 @@
 #include "dynamics/world.h"
 #include "io/hdf5_writer.h"
 #include "io/vtk_writer.h"
+#include "scene/scene.h"
 
 namespace polyfloe::run {
 
 using GridGeometry = io::ImageGrid;
+
+// The velocity grid a scene asks for (its region, or every body of `world` at t = 0), checked against the size
+// limit (throws SceneError past it).
+GridGeometry velocity_grid_geometry(const scene::VelocityGridSettings& g, const dynamics::World& world);
 
 class VelocityGrid {
  public:
@@ -65,6 +70,8 @@ class VelocityGridRecorder {
                        io::Hdf5Writer* h5, io::OutputManifest* manifest = nullptr);
   // Call after every step: samples when the time has reached the next sample time.
   void after_step(const dynamics::World& world);
+  // Whether after_step() at time t [s] takes a sample (reads the world).
+  bool due(double t) const { return t >= next_sample_ * (1.0 - 1e-12); }
   // Call at every output frame, before the HDF5 writer's write_frame (which flushes): writes the average since the
   // last frame (sampling now if nothing was sampled since).
   void write_frame(const dynamics::World& world);

@@ -87,7 +87,7 @@ std::string body_source(const BodySpec& b, std::size_t i) {
   return b.source.where.empty() ? name : b.source.where + " (" + name + ")";
 }
 
-void add(dynamics::World& world, const BodyDesc& desc, const std::string& source) {
+void add_checked(dynamics::World& world, const BodyDesc& desc, const std::string& source) {
   try {
     world.add_body(desc);
   } catch (const std::invalid_argument& e) {
@@ -241,7 +241,7 @@ class WorldBuilder {
       desc.motion = b.motion;
       desc.external_force = b.external_force;
       desc.external_torque = b.external_torque;
-      add(world_, desc, source);
+      add(desc, source);
     }
     if (const auto pair = first_overlap(bodies_, bodies_.size(), [](std::size_t, std::size_t) { return true; }))
       throw SceneError(bodies_[pair->second].source + ": overlaps " + bodies_[pair->first].source +
@@ -296,7 +296,7 @@ class WorldBuilder {
       const BodyDesc& desc = descs[e];
       bodies_.push_back(
           placed(where + " (ice_sheet element " + std::to_string(e) + ")", *desc.shape, desc.position, 0.0, true));
-      add(world_, desc, where);
+      add(desc, where);
       index[e] = world_.index_of(desc.id);
     }
     const auto pair = first_overlap(bodies_, bodies_.size(), [&](std::size_t a, std::size_t b) {
@@ -329,15 +329,22 @@ class WorldBuilder {
     for (std::size_t k = 0; k < field.floes.size(); ++k)
       order.emplace_back(geometry::space_key(field.floes[k].position, cell), k);
     std::sort(order.begin(), order.end());
-    for (const auto& [key, k] : order) add(world_, field.floes[k], where);
+    for (const auto& [key, k] : order) add(field.floes[k], where);
     if (field_report)
       *field_report =
           field_statistics(field.floes, field.region_area, scene_.floe_field->size_min, scene_.floe_field->size_max);
   }
 
   dynamics::World take() { return std::move(world_); }
+  // Where every body's description goes as it is added (none: nowhere).
+  void record_into(std::vector<BodyDesc>* descs) { record_ = descs; }
 
  private:
+  void add(const BodyDesc& desc, const std::string& source) {
+    add_checked(world_, desc, source);
+    if (record_) record_->push_back(desc);
+  }
+
   static dynamics::WorldSettings settings_of(const Scene& scene) {
     dynamics::WorldSettings settings = scene.world;
     settings.contact.reference_speed = reference_speed(scene);
@@ -363,7 +370,7 @@ class WorldBuilder {
     desc.thickness = max_thickness_;
     desc.density = scene_.ice_density;
     desc.motion = Motion::fixed;
-    add(world_, desc, source);
+    add(desc, source);
   }
 
   // The bonds between the sheet's elements (descs, World indices `index`) across its faces and at its corners.
@@ -409,13 +416,15 @@ class WorldBuilder {
   std::vector<PlacedBody> bodies_;       // placed so far
   std::vector<std::vector<Vec2>> land_;  // land that is no wall: an obstacle for the floe field only
   BodyId next_ = 0;                      // the next free id
-  double max_thickness_ = 0.0;           // of the dynamic bodies, for the walls' thickness [m]
+  std::vector<BodyDesc>* record_ = nullptr;
+  double max_thickness_ = 0.0;  // of the dynamic bodies, for the walls' thickness [m]
 };
 
 }  // namespace
 
-dynamics::World build_world(const Scene& scene, FieldStatistics* field_report) {
+dynamics::World build_world(const Scene& scene, FieldStatistics* field_report, std::vector<BodyDesc>* descs) {
   WorldBuilder b(scene);
+  b.record_into(descs);
   b.add_bodies();
   b.add_channel();
   b.add_land();

@@ -209,9 +209,12 @@ double bond_time_step(const dynamics::World& world);
 
 // Builds the World (explicit bodies, generated walls and floe field). Throws SceneError naming the source of a
 // body that is invalid (non-convex polygon, overlaps, ...).
-// When `field_report` is given and the scene has a floe field, it receives the field's realised statistics.
+// When `field_report` is given and the scene has a floe field, it receives the field's realised statistics; when
+// `descs` is given, every body's description in the order the World was given them (what a domain decomposition
+// hands its ranks).
 struct FieldStatistics;
-dynamics::World build_world(const Scene& scene, FieldStatistics* field_report = nullptr);
+dynamics::World build_world(const Scene& scene, FieldStatistics* field_report = nullptr,
+                            std::vector<dynamics::BodyDesc>* descs = nullptr);
 
 // The reference impact speed the scene uses (its own, or the automatic one) [m/s].
 double reference_speed(const Scene& scene);

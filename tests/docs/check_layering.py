@@ -7,7 +7,7 @@ The modules and their dependencies are read from the build itself: each `polyflo
 PRIVATE_DEPS ...)` of dem/CMakeLists.txt, and polyfloe_coupling's target_link_libraries in coupling/CMakeLists.txt.
 A file of module M may include its own module's headers and those of the modules M depends on: for a header, the
 public dependencies (DEPS) and, through them, theirs; for a source file, also its private dependencies (and their
-public ones). `dem/app/main.cpp` is the `polyfloe` program (links run); `coupling/app/` is `polyfloe-field` (links
+public ones). `dem/app/main.cpp` is the `polyfloe` program (links run, and mpi where built); `coupling/app/` is `polyfloe-field` (links
 coupling). Every module exports dem/ as its include directory, so the compiler would accept an include that points
 the wrong way; this check, run by CTest (`layering`), does not. Exit 1 naming each file, line and include.
 """
@@ -81,7 +81,7 @@ def main():
     ap.add_argument("--list", action="store_true", help="print each module's allowed includes and stop")
     a = ap.parse_args()
     mods = modules_from_cmake()
-    mods["dem-app"] = ({"run"}, set())
+    mods["dem-app"] = ({"run", "mpi"} if "mpi" in mods else {"run"}, set())
     mods["coupling-app"] = ({"coupling"}, set())
     coupling_headers = {n for n in os.listdir(os.path.join(ROOT, "coupling")) if n.endswith(".h")}
     if a.list:

@@ -1,0 +1,211 @@
+// `polyfloe run` under mpirun (mpi/distributed_run.h).
+#include "mpi/distributed_run.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "forcing/field.h"
+#include "io/progress.h"
+#include "run/guard.h"
+#include "run/run_outputs.h"
+#include "run/velocity_grid.h"
+#include "scene/scene_reader.h"
+
+namespace polyfloe::mpi {
+
+int agree(MPI_Comm comm, int code) {
+  int most = 0;
+  MPI_Allreduce(&code, &most, 1, MPI_INT, MPI_MAX, comm);
+  return most;
+}
+
+bool launched_by_mpirun() {
+  return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMI_SIZE") != nullptr ||
+         std::getenv("PMIX_RANK") != nullptr;
+}
+
+Session::Session(int& argc, char**& argv) {
+  if (!launched_by_mpirun()) return;
+  MPI_Init(&argc, &argv);
+  active_ = true;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank != 0) {
+    std::cout.setstate(std::ios::failbit);
+    std::cerr.setstate(std::ios::failbit);
+  }
+}
+
+Session::~Session() {
+  if (active_) MPI_Finalize();
+}
+
+namespace {
+
+// Rank 0 ran `f` (the others nothing); every rank learns whether it threw: rank 0 rethrows it, the others throw
+// PeerStopped.
+template <class F>
+void on_root_agreed(MPI_Comm comm, int rank, F&& f) {
+  std::exception_ptr failed;
+  if (rank == 0) {
+    try {
+      f();
+    } catch (...) {
+      failed = std::current_exception();
+    }
+  }
+  int stop = failed ? 1 : 0;
+  MPI_Bcast(&stop, 1, MPI_INT, 0, comm);
+  if (failed) std::rethrow_exception(failed);
+  if (stop) throw PeerStopped();
+}
+
+// An error this rank met alone, in the middle of a collective step: reported here, and the job aborted (the other
+// ranks wait in the step's exchanges).
+[[noreturn]] void abort_alone(MPI_Comm comm, int rank, const std::exception& e) {
+  if (dynamic_cast<const forcing::FieldError*>(&e))
+    std::fprintf(stderr,
+                 "\npolyfloe: the ice left the ocean field (rank %d): %s\nThe frames written so far are "
+                 "complete.\n",
+                 rank, e.what());
+  else
+    std::fprintf(stderr, "\npolyfloe: error (rank %d): %s\n", rank, e.what());
+  std::fflush(stderr);
+  MPI_Abort(comm, run::kExitFailure);
+  std::abort();  // (MPI_Abort does not return)
+}
+
+}  // namespace
+
+DistributedRun::DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamics::World world,
+                               std::vector<dynamics::BodyDesc> descs, const run::RunOptions& options,
+                               std::optional<run::Checkpoint> restart, const std::filesystem::path& restart_file)
+    : comm_(comm), scene_(scene), options_(options), descs_size_(descs.size()) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &ranks_);
+  if (world.bonds())
+    throw scene::SceneError(
+        "frozen ice (ice_sheet.bonds) does not yet run across MPI ranks: run this scene in one "
+        "process (without mpirun), with --threads N for the cores");
+  world.set_threads(options_.threads);
+  dt_ = scene::time_step(scene_, world);
+  reference_speed_ = scene::reference_speed(scene_);
+  const scene::VelocityGridSettings& grid = scene_.output.velocity_grid;
+  if (grid.enabled && (scene_.output.vtk || scene_.output.hdf5))
+    grid_geometry_ = run::velocity_grid_geometry(grid, world);  // (the same on every rank: refused on every one)
+  const dynamics::WorldSettings settings = world.settings();
+  if (rank_ == 0) {
+    signature_ = run::body_signature(world);
+    whole_.emplace(std::move(world));
+  }
+  on_root_agreed(comm_, rank_, [&] {
+    if (restart)
+      restart_results_ = run::take_checkpoint(scene_, *whole_, *restart, restart_file, options_.output_dir,
+                                              grid_geometry_.has_value());
+  });
+  ice_ = std::make_unique<domain::DistributedWorld>(comm_, settings, std::move(descs));
+  ice_->set_threads(options_.threads);
+  if (restart) ice_->restore(restart->world);  // (checked on rank 0: fits on every rank)
+  restart_ = std::move(restart);
+}
+
+DistributedRun::~DistributedRun() = default;
+
+void DistributedRun::gather() {
+  std::optional<dynamics::WorldState> state = ice_->gather(0);
+  std::vector<domain::DistributedWorld::Contact> contacts = ice_->gather_contacts(0);
+  if (rank_ != 0) return;
+  whole_->restore(*state);
+  std::vector<dynamics::ContactRecord> records;
+  records.reserve(contacts.size());
+  for (domain::DistributedWorld::Contact& c : contacts) {
+    c.record.a = whole_->index_of(c.a);
+    c.record.b = whole_->index_of(c.b);
+    records.push_back(c.record);
+  }
+  whole_->show_contacts(std::move(records));
+}
+
+run::RunSummary DistributedRun::run() {
+  using clock = std::chrono::steady_clock;
+  const auto wall0 = clock::now();
+  std::unique_ptr<run::BasicRunOutputs<dynamics::World>> outputs;
+  std::unique_ptr<io::Progress> progress;
+  // (the ranks' World is rebuilt when they exchange floes: read anew each time)
+  auto local = [this]() -> const dynamics::World& { return ice_->local(); };
+  const std::uint64_t first_step = local().step_count();
+  run::RunSummary s;
+  s.start_time = local().time();
+  on_root_agreed(comm_, rank_, [&] {
+    outputs = std::make_unique<run::BasicRunOutputs<dynamics::World>>(scene_, *whole_, options_, dt_, signature_,
+                                                                      grid_geometry_, restart_, restart_results_);
+    outputs->start(*whole_, restart_);  // a fresh run: the first frame from the whole ice, forces at t = 0
+    progress = std::make_unique<io::Progress>(scene_.time.duration, options_.interactive, stderr, first_step);
+  });
+
+  // Each step: rank 0 says the step to take (its outputs' schedule), every rank steps its share, the ranks agree
+  // on the guard's verdict and on whether the outputs read the ice after it, which is then gathered for them.
+  struct Next {
+    double dt;
+    int end;
+  };
+  for (;;) {
+    Next next{0.0, 0};
+    if (rank_ == 0) {
+      next = {outputs->step(local().time()), outputs->at_end(local().time()) ? 1 : 0};
+      progress->update(local().time(), local().step_count());
+    }
+    MPI_Bcast(&next, sizeof next, MPI_BYTE, 0, comm_);
+    if (next.end) break;
+    try {
+      ice_->step(next.dt);
+    } catch (const domain::CollectiveError&) {
+      throw;
+    } catch (const std::exception& e) {
+      abort_alone(comm_, rank_, e);
+    }
+    std::string unstable;
+    try {
+      run::check_stability(local(), local().report(), dt_, reference_speed_);
+    } catch (const run::InstabilityError& e) {
+      unstable = e.what();
+    }
+    int mine[2] = {unstable.empty() ? 0 : 1, rank_ == 0 && outputs->wants_world(local().time()) ? 1 : 0}, all[2];
+    MPI_Allreduce(mine, all, 2, MPI_INT, MPI_MAX, comm_);
+    if (all[0]) {  // the lowest rank that found the step unstable says why; the state goes to checkpoints/
+      int who = unstable.empty() ? ranks_ : rank_, first = 0;
+      MPI_Allreduce(&who, &first, 1, MPI_INT, MPI_MIN, comm_);
+      int length = static_cast<int>(unstable.size());
+      MPI_Bcast(&length, 1, MPI_INT, first, comm_);
+      unstable.resize(static_cast<std::size_t>(length));
+      MPI_Bcast(unstable.data(), length, MPI_CHAR, first, comm_);
+      gather();
+      if (rank_ == 0) unstable += outputs->save_unstable(*whole_);
+      throw run::InstabilityError(unstable);
+    }
+    if (!all[1]) continue;
+    gather();
+    on_root_agreed(comm_, rank_, [&] { outputs->after_step(*whole_); });
+  }
+  if (rank_ == 0) {
+    progress->finish(local().time(), local().step_count());
+    outputs->finish();
+    if (const run::ChannelMonitor* channel = outputs->channel()) {
+      s.channel_area_passed = channel->area_passed();
+      s.channel_jam_time = channel->jam_time();
+    }
+    s.frames = outputs->frames();
+    s.output_dir = outputs->path();
+  }
+  s.steps = local().step_count() - first_step;
+  s.simulated = local().time();
+  s.wall = std::chrono::duration<double>(clock::now() - wall0).count();
+  s.dt = dt_;
+  return s;
+}
+
+}  // namespace polyfloe::mpi

@@ -1,0 +1,208 @@
+#!/usr/bin/python3
+"""`polyfloe run` under mpirun, through the command line only: every output bitwise that of one process.
+
+    /usr/bin/python3 tests/mpi/test_cli_ranks.py --build BUILD [--work DIR] [--quick]
+
+1. The channel (walls, a strait, the velocity grid and checkpoints), a floe field drifting in a vortex current and
+   a pack driven against a wall, each run in one process (no mpirun, 1 thread) and then under mpirun at 1, 2, 3
+   and 4 ranks x 1 and 2 threads: every file of the output folder (results.h5 dataset by dataset and bit for bit,
+   every VTK frame and series, the checkpoints, results.xmf, the resolved scene) the same, and the first line
+   naming the ranks and threads.
+2. A run on 2 ranks killed (SIGKILL to every rank, as a lost node) after its second checkpoint, restarted on 3
+   ranks, killed again, and finished in one process without mpirun: bitwise the uninterrupted run (the folder's
+   manifest aside, which lists the restart's own temporary file).
+3. What does not run across ranks is refused with exit code 2, one message and no output folder: frozen ice
+   (bonds), a spatial scene, a bad output folder, a bad --set.
+--quick (the sanitizer build's run): the channel only, at 2 ranks x 1 thread and 3 ranks x 2 threads.
+Exit 0 when every check holds; each failure is printed. About 90 s on 2 cores (--quick: 20 s).
+"""
+import argparse
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import compare_outputs  # noqa: E402
+
+MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_WAIT_POLICY=passive"]
+SCENES = {  # scene: the --set options that keep it to a few seconds
+    "channel": ["run.duration=3", "output.interval=1", "output.checkpoint.every=1"],
+    "drift_vortex": ["run.duration=6", "output.interval=2"],
+    "pack_ice_sheet": ["run.duration=3", "output.interval=1"],
+}
+failures = []
+
+
+def fail(what):
+    failures.append(what)
+    print("FAIL:", what, flush=True)
+
+
+def command(polyfloe, scene, out, sets, ranks=0, threads=1, extra=()):
+    args = [polyfloe, "run", os.path.join(ROOT, "dem", "scenes", scene + ".yaml"), "-o", out, "--threads",
+            str(threads)]
+    for s in sets:
+        args += ["--set", s]
+    args += list(extra)
+    return (MPIRUN + ["-np", str(ranks)] if ranks else []) + args
+
+
+def run(args, env):
+    return subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+
+
+def differences(a, b, ignore=()):
+    return [d for d in compare_outputs.compare(a, b) if not any(d.startswith(i + ":") for i in ignore)]
+
+
+def matrix(polyfloe, work, env, quick):
+    layouts = [(2, 1), (3, 2)] if quick else [(r, t) for r in (1, 2, 3, 4) for t in (1, 2)]
+    for scene, sets in SCENES.items():
+        if quick and scene != "channel":
+            continue
+        ref = os.path.join(work, scene + "_one")
+        r = run(command(polyfloe, scene, ref, sets), env)
+        if r.returncode != 0:
+            fail(f"{scene}: one process: exit {r.returncode}: {r.stderr[-2000:]}")
+            continue
+        for ranks, threads in layouts:
+            out = os.path.join(work, f"{scene}_{ranks}x{threads}")
+            t0 = time.monotonic()
+            r = run(command(polyfloe, scene, out, sets, ranks, threads), env)
+            where = f"{scene}: {ranks} ranks x {threads} threads"
+            if r.returncode != 0:
+                fail(f"{where}: exit {r.returncode}: {r.stderr[-2000:]}")
+                continue
+            rank_word = "rank" if ranks == 1 else "ranks"
+            named = f"{ranks} MPI {rank_word} x {threads} thread{'s' if threads > 1 else ''} each"
+            if named not in r.stderr.splitlines()[0]:
+                fail(f"{where}: the first line does not name '{named}': {r.stderr.splitlines()[0]}")
+            d = differences(ref, out)
+            if d:
+                fail(f"{where}: differs from one process: " + "; ".join(d[:5]))
+            print(f"{where}: {'same' if not d else 'DIFFERENT'} ({time.monotonic() - t0:.1f} s)", flush=True)
+            shutil.rmtree(out)
+
+
+def killed_after(args, env, folder, checkpoints):
+    """Starts `args`, and kills every process of it (mpirun's ranks, or the one process) once `folder` holds
+    `checkpoints` numbered checkpoints more than it did. Returns whether it was killed before it ended."""
+    def count():  # the newest checkpoint's number (older ones are pruned)
+        d = os.path.join(folder, "checkpoints")
+        names = [n for n in os.listdir(d) if n.startswith("checkpoint_")] if os.path.isdir(d) else []
+        return max([int(n[len("checkpoint_"):-len(".h5")]) for n in names], default=0)
+
+    before = count()
+    p = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env,
+                         start_new_session=True)
+    while p.poll() is None and count() < before + checkpoints:
+        time.sleep(0.02)
+    if p.poll() is not None:
+        return False
+    # mpirun and its ranks, each rank in a process group of its own but all in the session started here: a lost node
+    for _ in range(200):
+        alive = session_members(p.pid)
+        if not alive:
+            break
+        for pid in alive:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        time.sleep(0.01)
+        p.poll()
+    p.wait()
+    if session_members(p.pid):
+        fail(f"processes of the killed run are still alive: {session_members(p.pid)}")
+    return True
+
+
+def session_members(sid):
+    """The live processes of session `sid` (zombies left out)."""
+    out = []
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{name}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[3]) == sid and fields[0] != "Z":
+            out.append(int(name))
+    return out
+
+
+def restart_across_rank_counts(polyfloe, work, env):
+    scene, sets = "channel", SCENES["channel"] + ["run.duration=5"]
+    ref = os.path.join(work, "restart_ref")
+    r = run(command(polyfloe, scene, ref, sets), env)
+    if r.returncode != 0:
+        return fail(f"restart: the uninterrupted run: exit {r.returncode}: {r.stderr[-2000:]}")
+    out = os.path.join(work, "restart")
+    if not killed_after(command(polyfloe, scene, out, sets, 2), env, out, 2):
+        return fail("restart: the 2-rank run ended before it could be killed")
+    if not killed_after(command(polyfloe, scene, out, sets, 3, extra=["--restart", out]), env, out, 1):
+        return fail("restart: the 3-rank restart ended before it could be killed")
+    r = run(command(polyfloe, scene, out, sets, extra=["--restart", out]), env)
+    if r.returncode != 0 or "restarting from" not in r.stderr:
+        return fail(f"restart: one process from the 3-rank checkpoint: exit {r.returncode}: {r.stderr[-2000:]}")
+    d = differences(ref, out, ignore=(".polyfloe-manifest",))
+    if d:
+        fail("restart: 2 ranks, killed, 3 ranks, killed, one process: differs from the uninterrupted run: " +
+             "; ".join(d[:5]))
+    else:
+        print("restart: 2 ranks -> SIGKILL -> 3 ranks -> SIGKILL -> one process: same as uninterrupted", flush=True)
+
+
+def refusals(polyfloe, work, env):
+    cases = [
+        ("uniaxial_compression", [], [], "frozen ice"),
+        ("cube_plate", [], [], "spatial scene"),
+        ("channel", ["run.duration=-1"], [], "run.duration"),
+    ]
+    for scene, sets, extra, words in cases:
+        out = os.path.join(work, "refused_" + scene)
+        r = run(command(polyfloe, scene, out, sets, 2, extra=extra), env)
+        where = f"refusal of {scene} {' '.join(sets)} on 2 ranks"
+        if r.returncode != 2:
+            fail(f"{where}: exit {r.returncode}, not 2: {r.stderr[-1000:]}")
+        if r.stderr.count("polyfloe: error:") != 1 or words not in r.stderr:
+            fail(f"{where}: not one message naming '{words}': {r.stderr[-1000:]}")
+        if os.path.exists(out):
+            fail(f"{where}: the output folder {out} was created")
+    r = run(command(polyfloe, "channel", "/proc/polyfloe", SCENES["channel"], 3), env)
+    if r.returncode != 2 or r.stderr.count("polyfloe: error:") != 1:
+        fail(f"an output folder in /proc on 3 ranks: exit {r.returncode}, not 2 with one message: {r.stderr[-1000:]}")
+    print("refusals: exit 2, one message, no output", flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", required=True, help="the build folder (holds polyfloe)")
+    ap.add_argument("--work", help="where the runs go (default: a temporary folder, removed)")
+    ap.add_argument("--quick", action="store_true", help="the channel on two layouts only")
+    a = ap.parse_args()
+    polyfloe = os.path.join(os.path.abspath(a.build), "polyfloe")
+    env = dict(os.environ, OMP_WAIT_POLICY="passive")
+    env.pop("OMP_NUM_THREADS", None)
+    work = a.work or tempfile.mkdtemp(prefix="polyfloe-mpi-cli-")
+    os.makedirs(work, exist_ok=True)
+    try:
+        matrix(polyfloe, work, env, a.quick)
+        restart_across_rank_counts(polyfloe, work, env)
+        refusals(polyfloe, work, env)
+    finally:
+        if not a.work:
+            shutil.rmtree(work, ignore_errors=True)
+    print(f"{len(failures)} failures" if failures else "all checks hold")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
