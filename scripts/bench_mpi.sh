@@ -6,10 +6,13 @@
 #                                        # only; weak scaling 1 x 75k and 2 x 75k; LAMMPS 160k disks on 1 and 2 ranks
 #   bash scripts/bench_mpi.sh -n 15000   # a smaller pack (and 7.5k per rank for the weak scaling)
 #   bash scripts/bench_mpi.sh -r 3       # medians of 3 repetitions
+#   bash scripts/bench_mpi.sh -c         # the 60 % channel only: `polyfloe run` (outputs included, rank 0 gathering
+#                                        # the ice for each frame) over its first 60 s, 1 x 1, 1 x 2 and 2 x 1
 #
 # Prints each run's table (bench_mpi: wall per step, core-us per floe-step, each rank's owned floes, ghosts, bytes
 # and messages per step, seconds per step in the step's exchanges, in renewals and in the test for one) and writes
-# results/bench/mpi/*.json and results/bench/mpi.csv. On a 2-core machine ranks x threads <= 2 only: the runs are one
+# results/bench/mpi/*.json and results/bench/mpi.csv; the channel's runs: results/bench/mpi_channel.csv (the wall
+# time of the run's steps and outputs, from its "Done:" line, medians of -r). On a 2-core machine ranks x threads <= 2 only: the runs are one
 # after the other, nothing else should run. Installs lammps through scripts/setup.sh bench.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,11 +20,13 @@ cd "$(dirname "$0")/.."
 N=150000
 REPS=1
 STEPS=30
+CHANNEL_ONLY=0
 while [[ $# -gt 0 ]]; do
   case "$1" in
+    -c) CHANNEL_ONLY=1; shift ;;
     -n) N="$2"; shift 2 ;;
     -r) REPS="$2"; shift 2 ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
     *) echo "bench_mpi.sh: unknown argument '$1' (try -h)" >&2; exit 2 ;;
   esac
 done
@@ -31,7 +36,7 @@ done
 bash scripts/setup.sh bench
 BUILD_DIR=build-bench
 source scripts/bench_build.sh
-bench_build "$BUILD_DIR" bench_mpi >/dev/null
+bench_build "$BUILD_DIR" bench_mpi polyfloe >/dev/null
 
 OUT=results/bench/mpi
 mkdir -p "$OUT"
@@ -42,6 +47,34 @@ MPIRUN=(mpirun --oversubscribe --bind-to none)
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 json_value() { /usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
+
+# The 60 % channel through the command line: the median wall time of REPS runs of its first 60 s, per layout.
+channel() {
+  local csv="$OUT/../mpi_channel.csv" ranks threads k walls
+  echo "ranks,threads,wall_s,speedup" >"$csv"
+  local base=""
+  for layout in "1 1" "1 2" "2 1"; do
+    read -r ranks threads <<<"$layout"
+    walls=()
+    for ((k = 0; k < REPS; ++k)); do
+      rm -rf "$WORK/channel"
+      "${MPIRUN[@]}" -np "$ranks" "$BUILD_DIR/polyfloe" run dem/scenes/channel.yaml -o "$WORK/channel" \
+        --threads "$threads" --set floe_field.concentration=0.6 --set run.duration=60 >"$WORK/channel.txt" 2>/dev/null
+      walls+=("$(sed -n 's/^Done: .* simulated in \([0-9.e+-]*\) s wall.*/\1/p' "$WORK/channel.txt")")
+    done
+    local wall
+    wall=$(printf '%s\n' "${walls[@]}" | median)
+    base=${base:-$wall}
+    printf 'channel 60 %%, first 60 s: %d rank(s) x %d thread(s): %s s wall (runs: %s)\n' "$ranks" "$threads" "$wall" \
+      "${walls[*]}"
+    echo "$ranks,$threads,$wall,$(awk -v b="$base" -v w="$wall" 'BEGIN { printf "%.3f", b / w }')" >>"$csv"
+  done
+  echo "written: $csv"
+}
+if [[ "$CHANNEL_ONLY" == 1 ]]; then
+  channel
+  exit 0
+fi
 
 echo "case,floes,ranks,threads,core_us_per_floe_step,wall_ms_per_step,max_halo_bytes_per_step,max_halo_ms_per_step" \
   >"$OUT/../mpi.csv"
@@ -94,4 +127,5 @@ for ranks in 1 2; do
   printf 'LAMMPS  %d disks on %d ranks: %s core-us per particle-step\n' "$atoms" "$ranks" "$us"
   echo "lammps_${ranks}x1,$atoms,$ranks,1,$us,,," >>"$OUT/../mpi.csv"
 done
+channel
 echo "written: $OUT/../mpi.csv, $OUT/*.json"

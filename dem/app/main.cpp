@@ -2,6 +2,7 @@
 //   polyfloe run SCENE [-o DIR] [--set key.path=value]... [--threads N] [--profile] [--restart CHECKPOINT|DIR]
 //   polyfloe check SCENE [--set key.path=value]...
 //   polyfloe field import|info|compare ...   (runs polyfloe-field from coupling/, installed beside this program)
+//   mpirun -np N polyfloe run SCENE ...      (the planar World cut among MPI ranks: mpi/distributed_run.h)
 //   polyfloe --help | --version
 // Exit codes: 0 done, 2 bad input, 3 the run became unstable, 1 anything else.
 #include <unistd.h>
@@ -47,6 +48,8 @@ const char* kUsage = R"(PolyFloe: polyhedral discrete-element simulation of sea-
 
 Usage:
   polyfloe run SCENE [options]     run a scene, write VTK (.pvd/.vtp) and HDF5 results
+  mpirun -np N polyfloe run SCENE  the same run cut among N MPI ranks (planar scenes without bonds): every
+                                   output file bitwise that of one process; one thread per rank unless --threads
   polyfloe check SCENE [options]   validate a scene, print it resolved and the time step it would use
   polyfloe field import CASE -o F  resample an OpenFOAM case's velocity onto a grid: an ocean field file
                                    (also: field info F, field compare CASE F; polyfloe field --help)
@@ -59,7 +62,8 @@ Options:
                           --set forcing.ocean.current=[0.5,0] --set floes.0.position=[10,0]
   --threads N             worker threads of the step (OpenMP; default: the cores, or OMP_NUM_THREADS); the
                           result is bitwise the same for any N
-  --profile               print where the step time went
+  --profile               print where the step time went (under mpirun: each rank's floes, ghosts and
+                          communication)
   --restart CKPT|DIR      continue an interrupted run from a checkpoint file, or from the newest checkpoint of
                           a run's output folder; the result is bitwise that of an uninterrupted run (same scene
                           and --set options). Output goes on in the run's folder (default: the checkpoint's)

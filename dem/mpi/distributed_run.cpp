@@ -1,6 +1,7 @@
 // `polyfloe run` under mpirun (mpi/distributed_run.h).
 #include "mpi/distributed_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -8,6 +9,7 @@
 #include <iostream>
 #include <string>
 
+#include "domain/collectives.h"
 #include "forcing/field.h"
 #include "io/progress.h"
 #include "run/guard.h"
@@ -77,6 +79,42 @@ void on_root_agreed(MPI_Comm comm, int rank, F&& f) {
   std::fflush(stderr);
   MPI_Abort(comm, run::kExitFailure);
   std::abort();  // (MPI_Abort does not return)
+}
+
+// What each rank spent its run on (polyfloe run --profile under mpirun), printed by rank 0.
+void print_rank_profile(MPI_Comm comm, const domain::DistributedWorld& ice, std::uint64_t steps, double wall) {
+  struct Row {
+    double owned, ghosts, halo_bytes, halo_messages, halo_s, renewal_bytes, renewal_s, check_s, renewals, migrated;
+  };
+  const dynamics::World& w = ice.local();
+  double ghosts = 0.0;
+  for (int i = 0; i < static_cast<int>(w.size()); ++i) ghosts += w.is_ghost(i) ? 1.0 : 0.0;
+  const domain::DistributedWorld::Communication c = ice.communication();
+  const Row mine{static_cast<double>(w.size()) - ghosts,
+                 ghosts,
+                 static_cast<double>(c.halo_bytes),
+                 static_cast<double>(c.halo_messages),
+                 c.halo_seconds,
+                 static_cast<double>(c.renewal_bytes),
+                 c.renewal_seconds,
+                 c.check_seconds,
+                 static_cast<double>(ice.renewals()),
+                 static_cast<double>(ice.migrated())};
+  const std::vector<std::vector<Row>> all = domain::gather_to(comm, 0, std::vector<Row>{mine});
+  if (all.empty()) return;
+  const double per = 1.0 / static_cast<double>(std::max<std::uint64_t>(steps, 1));
+  std::fprintf(stderr,
+               "profile: %.3f s wall for %llu steps; per rank (at the end; exchanges per step, waiting "
+               "included):\n",
+               wall, static_cast<unsigned long long>(steps));
+  for (std::size_t r = 0; r < all.size(); ++r) {
+    const Row& x = all[r].front();
+    std::fprintf(stderr,
+                 "  rank %zu: %.0f bodies + %.0f ghosts; %.0f bytes in %.1f messages, %.3f ms; %.0f renewals (%.0f "
+                 "floes taken over, %.0f bytes, %.3f s), renewal test %.3f s\n",
+                 r, x.owned, x.ghosts, x.halo_bytes * per, x.halo_messages * per, 1e3 * x.halo_s * per, x.renewals,
+                 x.migrated, x.renewal_bytes, x.renewal_s, x.check_s);
+  }
 }
 
 }  // namespace
@@ -205,6 +243,7 @@ run::RunSummary DistributedRun::run() {
   s.simulated = local().time();
   s.wall = std::chrono::duration<double>(clock::now() - wall0).count();
   s.dt = dt_;
+  if (options_.profile) print_rank_profile(comm_, *ice_, s.steps, s.wall);
   return s;
 }
 

@@ -3,18 +3,21 @@
 
     /usr/bin/python3 tests/mpi/test_cli_ranks.py --build BUILD [--work DIR] [--quick]
 
-1. The channel (walls, a strait, the velocity grid and checkpoints), a floe field drifting in a vortex current and
-   a pack driven against a wall, each run in one process (no mpirun, 1 thread) and then under mpirun at 1, 2, 3
+1. The channel (walls, a strait, the velocity grid and checkpoints), a floe field drifting in a vortex current, a
+   pack driven against a wall and two floes colliding (ranks with no floe), each run in one process (no mpirun, 1 thread) and then under mpirun at 1, 2, 3
    and 4 ranks x 1 and 2 threads: every file of the output folder (results.h5 dataset by dataset and bit for bit,
    every VTK frame and series, the checkpoints, results.xmf, the resolved scene) the same, and the first line
    naming the ranks and threads.
 2. A run on 2 ranks killed (SIGKILL to every rank, as a lost node) after its second checkpoint, restarted on 3
    ranks, killed again, and finished in one process without mpirun: bitwise the uninterrupted run (the folder's
    manifest aside, which lists the restart's own temporary file).
-3. What does not run across ranks is refused with exit code 2, one message and no output folder: frozen ice
+3. A floe field driven by an ocean field file (written here in the documented layout; every rank reads it) at 2-4
+   ranks, bitwise one process's; the same field cut short so that the ice leaves it: exit 1 and one message from
+   the rank that met it (which ends the job).
+4. What does not run across ranks is refused with exit code 2, one message and no output folder: frozen ice
    (bonds), a spatial scene, a bad output folder, a bad --set.
---quick (the sanitizer build's run): the channel only, at 2 ranks x 1 thread and 3 ranks x 2 threads.
-Exit 0 when every check holds; each failure is printed. About 90 s on 2 cores (--quick: 20 s).
+--quick (the sanitizer build's run): the channel only, at 2 ranks x 1 thread and 3 ranks x 2 threads, the field
+file at 2 ranks. Exit 0 when every check holds; each failure is printed. About 2 minutes on 2 cores.
 """
 import argparse
 import os
@@ -34,6 +37,7 @@ SCENES = {  # scene: the --set options that keep it to a few seconds
     "channel": ["run.duration=3", "output.interval=1", "output.checkpoint.every=1"],
     "drift_vortex": ["run.duration=6", "output.interval=2"],
     "pack_ice_sheet": ["run.duration=3", "output.interval=1"],
+    "two_floes": ["run.duration=1.5"],  # two floes: at 3 and 4 ranks, ranks with no floe
 }
 failures = []
 
@@ -160,6 +164,77 @@ def restart_across_rank_counts(polyfloe, work, env):
         print("restart: 2 ranks -> SIGKILL -> 3 ranks -> SIGKILL -> one process: same as uninterrupted", flush=True)
 
 
+FIELD_SCENE = """name: field_drift
+run: {duration: DURATION}
+output: {interval: 1}
+forcing:
+  ocean:
+    field: {type: file, path: ocean.h5}
+  air:
+    drag: {enabled: false}
+floe_field:
+  region: [0, 0, 300, 300]
+  concentration: 0.4
+  size: {min: 5, max: 40, exponent: 2.0}
+  seed: 3
+"""
+
+
+def write_field(path, x1):
+    """An ocean field file (the layout of docs/scene-reference.md) over [-50, x1] x [-50, 350] m: a current of
+    1.5 m/s along +x sheared across y and meandering in x, steady, one level."""
+    import h5py
+    import numpy as np
+    x, y = np.linspace(-50.0, x1, 41), np.linspace(-50.0, 350.0, 41)
+    X, Y = np.meshgrid(x, y)
+    U = np.zeros((1, 1, len(y), len(x), 3))
+    U[0, 0, :, :, 0] = 1.5 + 0.002 * (Y - 150.0)
+    U[0, 0, :, :, 1] = 0.3 * np.sin(X / 60.0)
+    with h5py.File(path, "w") as f:
+        f.attrs["format"] = "polyfloe-ocean-field"
+        f.attrs["format_version"] = 1
+        f.attrs["source"] = "tests/mpi/test_cli_ranks.py"
+        f.attrs["created_by"] = "tests/mpi/test_cli_ranks.py"
+        f["x"], f["y"], f["z"], f["t"] = x, y, np.array([0.0]), np.array([0.0])
+        f["U"] = U
+        f["mask"] = np.ones((1, len(y), len(x)), dtype=np.uint8)
+
+
+def field_file_runs(polyfloe, work, env, quick):
+    """A floe field driven by an ocean field file (every rank reads it): bitwise one process's; and a field too
+    small for the run, which the ice leaves: exit 1 from the rank that met it, its message once."""
+    folder = os.path.join(work, "field_scene")
+    os.makedirs(folder, exist_ok=True)
+    write_field(os.path.join(folder, "ocean.h5"), 650.0)
+    scene = os.path.join(folder, "field_drift.yaml")
+    with open(scene, "w") as f:
+        f.write(FIELD_SCENE.replace("DURATION", "4"))
+    ref, args = os.path.join(work, "field_one"), [polyfloe, "run", scene, "--threads", "1", "-o"]
+    r = run(args + [ref], env)
+    if r.returncode != 0:
+        return fail(f"field file: one process: exit {r.returncode}: {r.stderr[-2000:]}")
+    for ranks in (2,) if quick else (2, 3, 4):
+        out = os.path.join(work, f"field_{ranks}")
+        r = run(MPIRUN + ["-np", str(ranks)] + args + [out], env)
+        if r.returncode != 0:
+            fail(f"field file on {ranks} ranks: exit {r.returncode}: {r.stderr[-2000:]}")
+            continue
+        d = differences(ref, out)
+        if d:
+            fail(f"field file on {ranks} ranks: differs from one process: " + "; ".join(d[:5]))
+        print(f"field file: {ranks} ranks: {'same' if not d else 'DIFFERENT'}", flush=True)
+    # The ice leaves a field that ends at x = 305 m: the rank that owns the first floe to leave reports it.
+    write_field(os.path.join(folder, "ocean.h5"), 305.0)
+    with open(scene, "w") as f:
+        f.write(FIELD_SCENE.replace("DURATION", "20"))
+    r = run(MPIRUN + ["-np", "3"] + args + [os.path.join(work, "field_left")], env)
+    if r.returncode != 1 or r.stderr.count("the ice left the ocean field") != 1:
+        fail(f"a field the ice leaves, on 3 ranks: exit {r.returncode} (not 1) or not one message: "
+             f"{r.stderr[-2000:]}")
+    else:
+        print("field file: the ice leaving it on 3 ranks: exit 1, one message", flush=True)
+
+
 def refusals(polyfloe, work, env):
     cases = [
         ("uniaxial_compression", [], [], "frozen ice"),
@@ -196,6 +271,7 @@ def main():
     try:
         matrix(polyfloe, work, env, a.quick)
         restart_across_rank_counts(polyfloe, work, env)
+        field_file_runs(polyfloe, work, env, a.quick)
         refusals(polyfloe, work, env)
     finally:
         if not a.work:
