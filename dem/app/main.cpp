@@ -48,7 +48,7 @@ const char* kUsage = R"(PolyFloe: polyhedral discrete-element simulation of sea-
 
 Usage:
   polyfloe run SCENE [options]     run a scene, write VTK (.pvd/.vtp) and HDF5 results
-  mpirun -np N polyfloe run SCENE  the same run cut among N MPI ranks (planar scenes without bonds): every
+  mpirun -np N polyfloe run SCENE  the same run cut among N MPI ranks (planar scenes, frozen ice too): every
                                    output file bitwise that of one process; one thread per rank unless --threads
   polyfloe check SCENE [options]   validate a scene, print it resolved and the time step it would use
   polyfloe field import CASE -o F  resample an OpenFOAM case's velocity onto a grid: an ocean field file

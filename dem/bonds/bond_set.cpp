@@ -78,10 +78,7 @@ void BondSet::add_face(const FaceDesc& f) {
     point_sigma_.push_back(0.0);
     point_tau_.push_back(0.0);
   }
-  const std::size_t need = static_cast<std::size_t>(std::max(f.a, f.b)) + 1;
-  if (adjacency_.size() < need) adjacency_.resize(need);
-  adjacency_[static_cast<std::size_t>(f.a)].emplace_back(f.b, static_cast<int>(face));
-  adjacency_[static_cast<std::size_t>(f.b)].emplace_back(f.a, static_cast<int>(face));
+  link(f.a, f.b, static_cast<int>(face));
   ++intact_faces_;
   intact_points_ += static_cast<std::size_t>(k);
 }
@@ -93,10 +90,14 @@ void BondSet::add_corner_pair(int a, int b, std::span<const int> faces) {
       throw std::invalid_argument("corner pair: face " + std::to_string(f) + " does not exist");
   const int k = static_cast<int>(corner_faces_.size());
   corner_faces_.emplace_back(faces.begin(), faces.end());
+  link(a, b, -1 - k);
+}
+
+void BondSet::link(int a, int b, int face) {
   const std::size_t need = static_cast<std::size_t>(std::max(a, b)) + 1;
   if (adjacency_.size() < need) adjacency_.resize(need);
-  adjacency_[static_cast<std::size_t>(a)].emplace_back(b, -1 - k);
-  adjacency_[static_cast<std::size_t>(b)].emplace_back(a, -1 - k);
+  adjacency_[static_cast<std::size_t>(a)].emplace_back(b, face);
+  adjacency_[static_cast<std::size_t>(b)].emplace_back(a, face);
 }
 
 void BondSet::renumber(std::span<const int> to) {
@@ -108,6 +109,59 @@ void BondSet::renumber(std::span<const int> to) {
     adjacency[static_cast<std::size_t>(to[e])] = std::move(adjacency_[e]);
   }
   adjacency_ = std::move(adjacency);
+}
+
+BondSet BondSet::subset(std::span<const int> local_of) const {
+  BondSet out(material_);
+  out.tan_phi_ = tan_phi_;
+  const auto k = static_cast<std::size_t>(material_.points_per_face);
+  auto held = [&](int e) { return static_cast<std::size_t>(e) < local_of.size() ? local_of[e] : -1; };
+  std::vector<int> kept(face_a_.size(), -1);  // this set's face -> the subset's
+  for (std::size_t f = 0; f < face_a_.size(); ++f) {
+    const int a = held(face_a_[f]), b = held(face_b_[f]);
+    if (a < 0 || b < 0) continue;
+    kept[f] = static_cast<int>(out.face_a_.size());
+    out.face_a_.push_back(a);
+    out.face_b_.push_back(b);
+    out.face_id_a_.push_back(face_id_a_[f]);
+    out.face_id_b_.push_back(face_id_b_[f]);
+    out.face_normal_.push_back(face_normal_[f]);
+    out.face_mid_.push_back(face_mid_[f]);
+    out.face_length_.push_back(face_length_[f]);
+    out.face_kn_.push_back(face_kn_[f]);
+    out.face_ks_.push_back(face_ks_[f]);
+    out.face_yaw0_.push_back(face_yaw0_[f]);
+    out.face_first_.push_back(out.point_area_.size());
+    out.face_intact_.push_back(face_intact_[f]);
+    out.face_points_left_.push_back(face_points_left_[f]);
+    out.face_broken_time_.push_back(face_broken_time_[f]);
+    out.global_face_.push_back(global_face(f));
+    for (std::size_t p = face_first_[f]; p < face_first_[f] + k; ++p) {
+      out.anchor_a_.push_back(anchor_a_[p]);
+      out.anchor_b_.push_back(anchor_b_[p]);
+      out.point_area_.push_back(point_area_[p]);
+      out.point_intact_.push_back(point_intact_[p]);
+      out.point_sigma_.push_back(point_sigma_[p]);
+      out.point_tau_.push_back(point_tau_[p]);
+      out.intact_points_ += point_intact_[p] ? 1 : 0;
+    }
+    out.intact_faces_ += face_intact_[f] ? 1 : 0;
+    out.link(a, b, kept[f]);
+  }
+  // Corner pair c joins elements e < other (each lists the other with -1 - c).
+  for (std::size_t e = 0; e < adjacency_.size(); ++e)
+    for (const auto& [other, face] : adjacency_[e]) {
+      if (face >= 0 || static_cast<int>(e) > other) continue;
+      const int a = held(static_cast<int>(e)), b = held(other);
+      const std::vector<int>& ring = corner_faces_[static_cast<std::size_t>(-1 - face)];
+      if (a < 0 || b < 0 || std::any_of(ring.begin(), ring.end(), [&](int f) { return kept[f] < 0; })) continue;
+      std::vector<int> faces;
+      for (const int f : ring) faces.push_back(kept[f]);
+      out.add_corner_pair(a, b, faces);
+    }
+  out.max_sigma_ = max_sigma_;
+  out.max_tau_ = max_tau_;
+  return out;
 }
 
 bool BondSet::bonded(int a, int b) const {

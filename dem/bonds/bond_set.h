@@ -108,6 +108,13 @@ class BondSet {
   // +inf without intact faces or when no bonded element is dynamic (mass +inf).
   double critical_time_step(std::span<const double> mass, std::span<const double> inertia) const;
 
+  // A domain decomposition rank's share: the faces whose two elements `local_of` maps (element e of this set ->
+  // its index there, -1 where it is not held), in this set's order, with their state, and the corner pairs whose
+  // elements and faces are all kept. global_face() names each kept face's index in this set.
+  BondSet subset(std::span<const int> local_of) const;
+  // The index of face f in the set this one was taken from (subset()); f itself in a set not taken from another.
+  std::size_t global_face(std::size_t f) const { return global_face_.empty() ? f : global_face_[f]; }
+
   // The breakable state, and its restoration into a set built from the same faces (checkpoints). restore() throws
   // std::invalid_argument when the sizes differ or the counts are inconsistent.
   BondState state() const;
@@ -137,6 +144,8 @@ class BondSet {
   double max_tau() const { return max_tau_; }
 
  private:
+  void link(int a, int b, int face);  // elements a and b list each other with `face` (a corner pair: -1 - its index)
+
   BondMaterial material_;
   double tan_phi_ = 0.0;
   // faces
@@ -156,6 +165,7 @@ class BondSet {
   // per element: (neighbour, face) of every face it has, for bonded(); a corner pair k is stored as face -1 - k
   std::vector<std::vector<std::pair<int, int>>> adjacency_;
   std::vector<std::vector<int>> corner_faces_;
+  std::vector<std::size_t> global_face_;  // a subset's: each face's index in the set it was taken from
   std::size_t intact_faces_ = 0, intact_points_ = 0;
   double max_sigma_ = 0.0, max_tau_ = 0.0;
 };

@@ -153,8 +153,9 @@ dynamics::WorldState scalars_of(const dynamics::WorldState& s) {
 }  // namespace
 
 DistributedWorld::DistributedWorld(MPI_Comm comm, const dynamics::WorldSettings& settings,
-                                   std::vector<dynamics::BodyDesc> bodies, double margin)
+                                   std::vector<dynamics::BodyDesc> bodies, double margin, const bonds::BondSet* bonds)
     : comm_(comm), settings_(settings), bodies_(std::move(bodies)), partition_(comm) {
+  if (bonds) bonds_.emplace(*bonds);
   double radius_sum = 0.0;  // as a World adding the bodies in this order sums them
   int dynamic = 0;
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
@@ -181,6 +182,7 @@ void DistributedWorld::place(const dynamics::WorldState* full) {
     at[k] = bodies_[k].position;
     yaw[k] = bodies_[k].yaw;
   }
+  if (full && full->bonds) bonds_->restore(*full->bonds);  // (checked by restore(): the ice has bonds)
   if (full)
     for (std::size_t r = 0; r < full->ids.size(); ++r) {
       const std::size_t k = desc_of_.at(full->ids[r]);
@@ -240,7 +242,12 @@ void DistributedWorld::restore(const dynamics::WorldState& full) {
     if (!desc_of_.contains(e.first.lo) || !desc_of_.contains(e.first.hi))
       bad("a contact history names a body the ice does not have (" + std::to_string(e.first.lo) + ", " +
           std::to_string(e.first.hi) + ")");
-  if (full.bonds) bad("it has bonds; bonds across ranks are not supported yet");
+  if (full.bonds.has_value() != bonds_.has_value())
+    bad(full.bonds ? "it has bonds, the ice has none" : "it has no bonds, the ice has");
+  if (bonds_) {
+    bonds::BondSet check = *bonds_;  // (its own checks: sizes, counts)
+    check.restore(*full.bonds);
+  }
   place(&full);
 }
 
@@ -255,8 +262,9 @@ std::optional<dynamics::WorldState> DistributedWorld::gather(int root) const {
   Bytes mine;
   pack(s, own_rows, history, mine);
   const std::vector<Bytes> all = gather_to(comm_, root, mine);
-  if (rank() != root) return std::nullopt;
   dynamics::WorldState full = scalars_of(s);
+  if (bonds_) collect_bonds(root, &full);  // (collective)
+  if (rank() != root) return std::nullopt;
   for (const Bytes& m : all) unpack(m, full);
   std::vector<int> from(full.ids.size());
   std::iota(from.begin(), from.end(), 0);
@@ -264,52 +272,6 @@ std::optional<dynamics::WorldState> DistributedWorld::gather(int root) const {
   dynamics::gather_body_rows(full, from);
   contact::ContactCache::sort_by_key(full.contact_history);
   return full;
-}
-
-namespace {
-
-// A contact record as plain numbers (Eigen's vectors are not trivially copyable), for the gather.
-struct ContactWire {
-  BodyId a, b;
-  double normal[2], point[2], depth, area, normal_force, tangential_force, force[2], energy;
-  std::uint64_t sliding;
-};
-
-}  // namespace
-
-std::vector<DistributedWorld::Contact> DistributedWorld::gather_contacts(int root) const {
-  const dynamics::World& w = *world_;
-  std::vector<ContactWire> mine;
-  for (const dynamics::ContactRecord& r : w.contacts()) {
-    const dynamics::ContactGeometry& g = r.geometry;
-    mine.push_back({w.id(r.a),
-                    w.id(r.b),
-                    {g.normal.x(), g.normal.y()},
-                    {g.point.x(), g.point.y()},
-                    g.depth,
-                    g.area,
-                    r.normal_force,
-                    r.tangential_force,
-                    {r.force.x(), r.force.y()},
-                    r.energy,
-                    r.sliding ? 1u : 0u});
-  }
-  std::vector<Contact> all;
-  for (const std::vector<ContactWire>& from : gather_to(comm_, root, mine))
-    for (const ContactWire& c : from) {
-      Contact k{c.a, c.b, {}};
-      dynamics::ContactRecord& r = k.record;
-      r.geometry = {{c.normal[0], c.normal[1]}, {c.point[0], c.point[1]}, c.depth, c.area};
-      r.normal_force = c.normal_force;
-      r.tangential_force = c.tangential_force;
-      r.sliding = c.sliding != 0;
-      r.force = {c.force[0], c.force[1]};
-      r.energy = c.energy;
-      all.push_back(k);
-    }
-  std::sort(all.begin(), all.end(),
-            [](const Contact& x, const Contact& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
-  return all;
 }
 
 DistributedWorld::~DistributedWorld() = default;
@@ -321,6 +283,17 @@ void DistributedWorld::build(const std::vector<BodyId>& owned, const HaloLayout&
   for (const BodyId id : owned) w->add_body(bodies_[desc_of_.at(id)]);
   for (const std::vector<BodyId>& ids : layout.recv)
     for (const BodyId id : ids) w->set_ghost(w->add_body(bodies_[desc_of_.at(id)]), true);
+  std::optional<dynamics::WorldState> with_bonds;
+  if (bonds_) {  // the faces of the elements held here, with their state
+    std::vector<int> local_of(bodies_.size(), -1);
+    for (int i = 0; i < static_cast<int>(w->size()); ++i) local_of[desc_of_.at(w->id(i))] = i;
+    w->set_bonds(bonds_->subset(local_of));
+    if (state) {
+      with_bonds = *state;
+      with_bonds->bonds = w->bonds()->state();
+      state = &*with_bonds;
+    }
+  }
   if (halo_) {
     retired_.halo_bytes += halo_->bytes_sent();
     retired_.halo_messages += halo_->messages_sent();
@@ -455,6 +428,7 @@ void DistributedWorld::renew() {
   dynamics::WorldState full = owned;
   count_sent(out);
   for (const Bytes& m : all_to_all(comm_, out)) unpack(m, full);
+  if (bonds_) collect_bonds(-1, nullptr);  // every face's state, for the faces each rank now holds
   std::vector<BodyId> owned_ids = owned.ids;
   build(owned_ids, layout, &full);
   ++renewals_;

@@ -7,7 +7,7 @@
 // evaluates (the regions cut anew first where the ranks' shares have drifted apart), and the ghosts are chosen anew.
 //
 // Output: gather() and gather_contacts() give one rank the whole ice (what one World holding every floe would
-// hold), for the run's writers. Not yet: bonds (a scene with frozen ice is refused).
+// hold), for the run's writers. Frozen ice: each rank holds the bonded faces whose elements it holds.
 #pragma once
 
 #include <mpi.h>
@@ -37,8 +37,12 @@ class DistributedWorld {
   // Collective over `comm`. `settings` as for a World; its space_order_cell, where 0, is set from `bodies` as a World
   // that adds them in this order sets it (so that the ranks share it). The halo's margin [m]: 0 = 0.5 x the mean
   // equivalent radius of the dynamic bodies. Throws std::invalid_argument on a bad body (as World::add_body).
+  // `bonds`: frozen ice, its elements numbered by their place in `bodies` (none: no bonds). Each rank's World holds
+  // the faces whose two elements it holds (owned or ghost) and evaluates them all: a face with an element on each
+  // of two ranks is evaluated on both, from the same poses and predicted velocities, so both keep its state alike
+  // and each adds its forces to its own element in the faces' order, as one World does.
   DistributedWorld(MPI_Comm comm, const dynamics::WorldSettings& settings, std::vector<dynamics::BodyDesc> bodies,
-                   double margin = 0.0);
+                   double margin = 0.0, const bonds::BondSet* bonds = nullptr);
   ~DistributedWorld();
   DistributedWorld(const DistributedWorld&) = delete;
   DistributedWorld& operator=(const DistributedWorld&) = delete;
@@ -56,7 +60,7 @@ class DistributedWorld {
   // Collective, every rank given the same whole state (as gather() gives it, or one World's state() of the same
   // bodies, from a run on any number of ranks): the regions cut anew for its poses, each rank's floes and ghosts
   // taking their rows and histories from it. Throws std::invalid_argument (on every rank) where the state does not
-  // fit the bodies, naming what; bonds are refused.
+  // fit the bodies, naming what (bonds: as World::restore).
   void restore(const dynamics::WorldState& full);
   // A contact of the last evaluation, by the ids of its bodies (a < b; the record's indices are those of the rank
   // that evaluated it).
@@ -101,6 +105,9 @@ class DistributedWorld {
   // A World of `owned` and `ghosts` (ids) with `state` (rows for all of them; none: as the bodies were given).
   void build(const std::vector<dynamics::BodyId>& owned, const HaloLayout& layout, const dynamics::WorldState* state);
   void renew();
+  // The whole ice's bond state from the ranks that own each face's lower-id element: on every rank into bonds_
+  // (root < 0), or into `full` on rank `root`.
+  void collect_bonds(int root, dynamics::WorldState* full) const;
   void count_sent(const std::vector<std::vector<unsigned char>>& out);  // a renewal's messages to the other ranks
   // The farthest any vertex of an owned floe has moved since the last renewal [m] (on this rank).
   double moved() const;
@@ -111,6 +118,8 @@ class DistributedWorld {
   std::unordered_map<dynamics::BodyId, std::size_t> desc_of_;
   double margin_ = 0.0;
   Partition partition_;
+  mutable std::optional<bonds::BondSet> bonds_;  // every face, elements numbered as bodies_; its state as of the
+                                                 // last renewal or restore
   std::unique_ptr<dynamics::World> world_;
   std::unique_ptr<HaloExchange> halo_;
   std::uint64_t renewals_ = 0, migrated_ = 0, rebalances_ = 0;

@@ -8,6 +8,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <unordered_map>
 
 #include "domain/collectives.h"
 #include "forcing/field.h"
@@ -125,10 +126,6 @@ DistributedRun::DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamic
     : comm_(comm), scene_(scene), options_(options), descs_size_(descs.size()) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &ranks_);
-  if (world.bonds())
-    throw scene::SceneError(
-        "frozen ice (ice_sheet.bonds) does not yet run across MPI ranks: run this scene in one "
-        "process (without mpirun), with --threads N for the cores");
   world.set_threads(options_.threads);
   dt_ = scene::time_step(scene_, world);
   reference_speed_ = scene::reference_speed(scene_);
@@ -136,6 +133,15 @@ DistributedRun::DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamic
   if (grid.enabled && (scene_.output.vtk || scene_.output.hdf5))
     grid_geometry_ = run::velocity_grid_geometry(grid, world);  // (the same on every rank: refused on every one)
   const dynamics::WorldSettings settings = world.settings();
+  std::optional<bonds::BondSet> bonds;  // frozen ice, its elements numbered by their place in descs
+  if (world.bonds()) {
+    std::unordered_map<dynamics::BodyId, int> desc_of;
+    for (std::size_t k = 0; k < descs.size(); ++k) desc_of[descs[k].id] = static_cast<int>(k);
+    std::vector<int> to(world.size());
+    for (std::size_t i = 0; i < world.size(); ++i) to[i] = desc_of.at(world.id(static_cast<int>(i)));
+    bonds.emplace(*world.bonds());
+    bonds->renumber(to);
+  }
   if (rank_ == 0) {
     signature_ = run::body_signature(world);
     whole_.emplace(std::move(world));
@@ -145,7 +151,7 @@ DistributedRun::DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamic
       restart_results_ = run::take_checkpoint(scene_, *whole_, *restart, restart_file, options_.output_dir,
                                               grid_geometry_.has_value());
   });
-  ice_ = std::make_unique<domain::DistributedWorld>(comm_, settings, std::move(descs));
+  ice_ = std::make_unique<domain::DistributedWorld>(comm_, settings, std::move(descs), 0.0, bonds ? &*bonds : nullptr);
   ice_->set_threads(options_.threads);
   if (restart) ice_->restore(restart->world);  // (checked on rank 0: fits on every rank)
   restart_ = std::move(restart);

@@ -57,8 +57,7 @@ class DistributedRun {
   // the order it was given them (scene::build_world's); rank 0 keeps `world` as the whole ice its outputs show.
   // `restart` (a checkpoint read from `restart_file`, every rank given it): checked on rank 0 against the scene
   // and the interrupted run's outputs in options.output_dir, then restored on every rank. Throws on rank 0 what
-  // BasicSimulation's constructor throws (CheckpointError, SceneError), PeerStopped on the others; a scene with
-  // bonds is a SceneError on every rank (frozen ice is not yet cut among ranks).
+  // BasicSimulation's constructor throws (CheckpointError, SceneError), PeerStopped on the others.
   DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamics::World world, std::vector<dynamics::BodyDesc> descs,
                  const run::RunOptions& options, std::optional<run::Checkpoint> restart = std::nullopt,
                  const std::filesystem::path& restart_file = {});

@@ -4,19 +4,20 @@
     /usr/bin/python3 tests/mpi/test_cli_ranks.py --build BUILD [--work DIR] [--quick]
 
 1. The channel (walls, a strait, the velocity grid and checkpoints), a floe field drifting in a vortex current, a
-   pack driven against a wall and two floes colliding (ranks with no floe), each run in one process (no mpirun, 1 thread) and then under mpirun at 1, 2, 3
+   pack driven against a wall, two floes colliding (ranks with no floe) and a frozen sheet crushed until most of
+   its bonds break, each run in one process (no mpirun, 1 thread) and then under mpirun at 1, 2, 3
    and 4 ranks x 1 and 2 threads: every file of the output folder (results.h5 dataset by dataset and bit for bit,
    every VTK frame and series, the checkpoints, results.xmf, the resolved scene) the same, and the first line
    naming the ranks and threads.
-2. A run on 2 ranks killed (SIGKILL to every rank, as a lost node) after its second checkpoint, restarted on 3
-   ranks, killed again, and finished in one process without mpirun: bitwise the uninterrupted run (the folder's
-   manifest aside, which lists the restart's own temporary file).
+2. The channel and the breaking sheet on 2 ranks killed (SIGKILL to every rank, as a lost node) after their second
+   checkpoint, restarted on 3 ranks, killed again, and finished in one process without mpirun: bitwise the
+   uninterrupted run (the folder's manifest aside, which lists the restart's own temporary file).
 3. A floe field driven by an ocean field file (written here in the documented layout; every rank reads it) at 2-4
    ranks, bitwise one process's; the same field cut short so that the ice leaves it: exit 1 and one message from
    the rank that met it (which ends the job).
-4. What does not run across ranks is refused with exit code 2, one message and no output folder: frozen ice
-   (bonds), a spatial scene, a bad output folder, a bad --set.
---quick (the sanitizer build's run): the channel only, at 2 ranks x 1 thread and 3 ranks x 2 threads, the field
+4. What does not run across ranks is refused with exit code 2, one message and no output folder: a spatial scene;
+   and bad input is reported once: a bad output folder, a bad --set.
+--quick (the sanitizer build's run): the channel and the breaking sheet at 2 and 3 ranks x 1 thread, the field
 file at 2 ranks. Exit 0 when every check holds; each failure is printed. About 2 minutes on 2 cores.
 """
 import argparse
@@ -33,11 +34,17 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import compare_outputs  # noqa: E402
 
 MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_WAIT_POLICY=passive"]
-SCENES = {  # scene: the --set options that keep it to a few seconds
-    "channel": ["run.duration=3", "output.interval=1", "output.checkpoint.every=1"],
-    "drift_vortex": ["run.duration=6", "output.interval=2"],
-    "pack_ice_sheet": ["run.duration=3", "output.interval=1"],
-    "two_floes": ["run.duration=1.5"],  # two floes: at 3 and 4 ranks, ranks with no floe
+SCENES = {  # name: (scene, the --set options that keep it to a few seconds)
+    "channel": ("channel", ["run.duration=3", "output.interval=1", "output.checkpoint.every=1"]),
+    "drift_vortex": ("drift_vortex", ["run.duration=6", "output.interval=2"]),
+    "pack_ice_sheet": ("pack_ice_sheet", ["run.duration=3", "output.interval=1"]),
+    "two_floes": ("two_floes", ["run.duration=1.5"]),  # two floes: at 3 and 4 ranks, ranks with no floe
+    # a 60 m frozen sheet (about 180 bonded elements, 253 faces) crushed by plates closing at 4 m/s: 230 faces break
+    "breaking_sheet": ("uniaxial_compression", [
+        "run.duration=0.4", "output.interval=0.02", "ice_sheet.region=[0,0,60,60]", "floes.0.rectangle.height=80",
+        "floes.1.rectangle.height=80", "floes.0.position=[-10,30]", "floes.1.position=[70,30]",
+        "floes.0.velocity=[2,0]", "floes.1.velocity=[-2,0]", "ice_sheet.bonds.tensile_strength=0.2e6",
+        "ice_sheet.bonds.shear_strength=0.2e6"]),
 }
 failures = []
 
@@ -65,20 +72,26 @@ def differences(a, b, ignore=()):
 
 
 def matrix(polyfloe, work, env, quick):
-    layouts = [(2, 1), (3, 2)] if quick else [(r, t) for r in (1, 2, 3, 4) for t in (1, 2)]
-    for scene, sets in SCENES.items():
-        if quick and scene != "channel":
+    layouts = [(2, 1), (3, 1)] if quick else [(r, t) for r in (1, 2, 3, 4) for t in (1, 2)]
+    for name, (scene, sets) in SCENES.items():
+        if quick and name not in ("channel", "breaking_sheet"):
             continue
-        ref = os.path.join(work, scene + "_one")
+        ref = os.path.join(work, name + "_one")
         r = run(command(polyfloe, scene, ref, sets), env)
         if r.returncode != 0:
-            fail(f"{scene}: one process: exit {r.returncode}: {r.stderr[-2000:]}")
+            fail(f"{name}: one process: exit {r.returncode}: {r.stderr[-2000:]}")
             continue
+        if name == "breaking_sheet":  # the case is about bonds breaking across the cuts: most of them must
+            import h5py
+            with h5py.File(os.path.join(ref, "results.h5"), "r") as f:
+                intact = f["bonds/intact_faces"][()]
+            if not intact[-1] < 0.25 * intact[0]:
+                fail(f"breaking_sheet: the sheet did not break ({intact[0]} -> {intact[-1]} intact faces)")
         for ranks, threads in layouts:
-            out = os.path.join(work, f"{scene}_{ranks}x{threads}")
+            out = os.path.join(work, f"{name}_{ranks}x{threads}")
             t0 = time.monotonic()
             r = run(command(polyfloe, scene, out, sets, ranks, threads), env)
-            where = f"{scene}: {ranks} ranks x {threads} threads"
+            where = f"{name}: {ranks} ranks x {threads} threads"
             if r.returncode != 0:
                 fail(f"{where}: exit {r.returncode}: {r.stderr[-2000:]}")
                 continue
@@ -142,26 +155,27 @@ def session_members(sid):
     return out
 
 
-def restart_across_rank_counts(polyfloe, work, env):
-    scene, sets = "channel", SCENES["channel"] + ["run.duration=5"]
-    ref = os.path.join(work, "restart_ref")
+def restart_across_rank_counts(polyfloe, work, env, name, extra_sets):
+    scene, sets = SCENES[name][0], SCENES[name][1] + extra_sets
+    ref = os.path.join(work, name + "_restart_ref")
     r = run(command(polyfloe, scene, ref, sets), env)
     if r.returncode != 0:
-        return fail(f"restart: the uninterrupted run: exit {r.returncode}: {r.stderr[-2000:]}")
-    out = os.path.join(work, "restart")
+        return fail(f"restart of {name}: the uninterrupted run: exit {r.returncode}: {r.stderr[-2000:]}")
+    out = os.path.join(work, name + "_restart")
     if not killed_after(command(polyfloe, scene, out, sets, 2), env, out, 2):
-        return fail("restart: the 2-rank run ended before it could be killed")
+        return fail(f"restart of {name}: the 2-rank run ended before it could be killed")
     if not killed_after(command(polyfloe, scene, out, sets, 3, extra=["--restart", out]), env, out, 1):
-        return fail("restart: the 3-rank restart ended before it could be killed")
+        return fail(f"restart of {name}: the 3-rank restart ended before it could be killed")
     r = run(command(polyfloe, scene, out, sets, extra=["--restart", out]), env)
     if r.returncode != 0 or "restarting from" not in r.stderr:
-        return fail(f"restart: one process from the 3-rank checkpoint: exit {r.returncode}: {r.stderr[-2000:]}")
+        return fail(f"restart of {name}: one process from the 3-rank checkpoint: exit {r.returncode}: {r.stderr[-2000:]}")
     d = differences(ref, out, ignore=(".polyfloe-manifest",))
     if d:
-        fail("restart: 2 ranks, killed, 3 ranks, killed, one process: differs from the uninterrupted run: " +
-             "; ".join(d[:5]))
+        fail(f"restart of {name}: 2 ranks, killed, 3 ranks, killed, one process: differs from the uninterrupted "
+             "run: " + "; ".join(d[:5]))
     else:
-        print("restart: 2 ranks -> SIGKILL -> 3 ranks -> SIGKILL -> one process: same as uninterrupted", flush=True)
+        print(f"restart of {name}: 2 ranks -> SIGKILL -> 3 ranks -> SIGKILL -> one process: same as uninterrupted",
+              flush=True)
 
 
 FIELD_SCENE = """name: field_drift
@@ -237,7 +251,6 @@ def field_file_runs(polyfloe, work, env, quick):
 
 def refusals(polyfloe, work, env):
     cases = [
-        ("uniaxial_compression", [], [], "frozen ice"),
         ("cube_plate", [], [], "spatial scene"),
         ("channel", ["run.duration=-1"], [], "run.duration"),
     ]
@@ -251,7 +264,7 @@ def refusals(polyfloe, work, env):
             fail(f"{where}: not one message naming '{words}': {r.stderr[-1000:]}")
         if os.path.exists(out):
             fail(f"{where}: the output folder {out} was created")
-    r = run(command(polyfloe, "channel", "/proc/polyfloe", SCENES["channel"], 3), env)
+    r = run(command(polyfloe, "channel", "/proc/polyfloe", SCENES["channel"][1], 3), env)
     if r.returncode != 2 or r.stderr.count("polyfloe: error:") != 1:
         fail(f"an output folder in /proc on 3 ranks: exit {r.returncode}, not 2 with one message: {r.stderr[-1000:]}")
     print("refusals: exit 2, one message, no output", flush=True)
@@ -270,7 +283,8 @@ def main():
     os.makedirs(work, exist_ok=True)
     try:
         matrix(polyfloe, work, env, a.quick)
-        restart_across_rank_counts(polyfloe, work, env)
+        restart_across_rank_counts(polyfloe, work, env, "channel", ["run.duration=5"])
+        restart_across_rank_counts(polyfloe, work, env, "breaking_sheet", ["output.checkpoint.every=2"])
         field_file_runs(polyfloe, work, env, a.quick)
         refusals(polyfloe, work, env)
     finally:
