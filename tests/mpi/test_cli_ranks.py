@@ -15,7 +15,9 @@
 3. A floe field driven by an ocean field file (written here in the documented layout; every rank reads it) at 2-4
    ranks, bitwise one process's; the same field cut short so that the ice leaves it: exit 1 and one message from
    the rank that met it (which ends the job).
-4. What does not run across ranks is refused with exit code 2, one message and no output folder: a spatial scene;
+4. A run that becomes unstable (two floes at a step far too long) on 2 ranks: exit 3, the message once, its
+   folder (checkpoints/unstable.h5 included) bitwise one process's.
+5. What does not run across ranks is refused with exit code 2, one message and no output folder: a spatial scene;
    and bad input is reported once: a bad output folder, a bad --set.
 --quick (the sanitizer build's run): the channel and the breaking sheet at 2 and 3 ranks x 1 thread, the field
 file at 2 ranks. Exit 0 when every check holds; each failure is printed. About 2 minutes on 2 cores.
@@ -249,6 +251,22 @@ def field_file_runs(polyfloe, work, env, quick):
         print("field file: the ice leaving it on 3 ranks: exit 1, one message", flush=True)
 
 
+def unstable(polyfloe, work, env):
+    """Two floes at a step far too long: the ranks agree that the run became unstable; exit 3, the message once,
+    and the folder (frames, checkpoints, the state in checkpoints/unstable.h5) bitwise one process's."""
+    sets = ["run.dt=0.02"]
+    ref, out = os.path.join(work, "unstable_one"), os.path.join(work, "unstable_2")
+    one = run(command(polyfloe, "two_floes", ref, sets), env)
+    r = run(command(polyfloe, "two_floes", out, sets, 2), env)
+    if one.returncode != 3 or r.returncode != 3 or r.stderr.count("the run became unstable") != 1:
+        return fail(f"an unstable run on 2 ranks: exit {r.returncode} (one process: {one.returncode}), not 3 with "
+                    f"one message: {r.stderr[-1500:]}")
+    d = differences(ref, out)
+    if d or not os.path.exists(os.path.join(out, "checkpoints", "unstable.h5")):
+        return fail("an unstable run on 2 ranks: its folder differs from one process's: " + "; ".join(d[:5]))
+    print("unstable on 2 ranks: exit 3, one message, the folder (unstable.h5 included) as one process's", flush=True)
+
+
 def refusals(polyfloe, work, env):
     cases = [
         ("cube_plate", [], [], "spatial scene"),
@@ -286,6 +304,7 @@ def main():
         restart_across_rank_counts(polyfloe, work, env, "channel", ["run.duration=5"])
         restart_across_rank_counts(polyfloe, work, env, "breaking_sheet", ["output.checkpoint.every=2"])
         field_file_runs(polyfloe, work, env, a.quick)
+        unstable(polyfloe, work, env)
         refusals(polyfloe, work, env)
     finally:
         if not a.work:
