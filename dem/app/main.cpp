@@ -430,6 +430,9 @@ int exec_field_tool(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "field") return exec_field_tool(argc, argv);
+#ifdef POLYFLOE_MPI
+  mpi::Session mpi(argc, argv);  // (under mpirun: rank 0 alone reports, from the usage on)
+#endif
   // --help anywhere (polyfloe run --help) or 'help' as the command: the usage.
   if (argc >= 2 && (std::string(argv[1]) == "help" || std::any_of(argv + 1, argv + argc, [](const char* x) {
                       return std::string(x) == "--help" || std::string(x) == "-h";
@@ -449,9 +452,6 @@ int main(int argc, char** argv) {
     return run::kExitBadInput;
   }
 
-#ifdef POLYFLOE_MPI
-  mpi::Session mpi(argc, argv);
-#endif
   // Bad input is found here, before any output is created.
   std::vector<dynamics::BodyDesc> descs;  // under mpirun: the bodies as the world was given them
   scene::Scene sc;

@@ -160,23 +160,30 @@ DistributedRun::DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamic
 DistributedRun::~DistributedRun() = default;
 
 void DistributedRun::gather() {
-  std::optional<dynamics::WorldState> state = ice_->gather(0);
-  std::vector<domain::DistributedWorld::Contact> contacts = ice_->gather_contacts(0);
-  if (rank_ != 0) return;
-  whole_->restore(*state);
-  std::vector<dynamics::ContactRecord> records;
-  records.reserve(contacts.size());
-  for (domain::DistributedWorld::Contact& c : contacts) {
-    c.record.a = whole_->index_of(c.a);
-    c.record.b = whole_->index_of(c.b);
-    records.push_back(c.record);
+  std::optional<dynamics::WorldState> state;
+  std::exception_ptr failed;  // (rank 0's part of a gather may throw after its collectives)
+  try {
+    state = ice_->gather(0);
+  } catch (...) {
+    failed = std::current_exception();
   }
-  whole_->show_contacts(std::move(records));
+  std::vector<domain::DistributedWorld::Contact> contacts = ice_->gather_contacts(0);
+  on_root_agreed(comm_, rank_, [&] {
+    if (failed) std::rethrow_exception(failed);
+    whole_->restore(*state);
+    std::vector<dynamics::ContactRecord> records;
+    records.reserve(contacts.size());
+    for (domain::DistributedWorld::Contact& c : contacts) {
+      c.record.a = whole_->index_of(c.a);
+      c.record.b = whole_->index_of(c.b);
+      records.push_back(c.record);
+    }
+    whole_->show_contacts(std::move(records));
+  });
 }
 
 run::RunSummary DistributedRun::run() {
-  using clock = std::chrono::steady_clock;
-  const auto wall0 = clock::now();
+  const auto wall0 = std::chrono::steady_clock::now();
   std::unique_ptr<run::BasicRunOutputs<dynamics::World>> outputs;
   std::unique_ptr<io::Progress> progress;
   // (the ranks' World is rebuilt when they exchange floes: read anew each time)
@@ -227,15 +234,20 @@ run::RunSummary DistributedRun::run() {
       MPI_Bcast(&length, 1, MPI_INT, first, comm_);
       unstable.resize(static_cast<std::size_t>(length));
       MPI_Bcast(unstable.data(), length, MPI_CHAR, first, comm_);
-      gather();
-      if (rank_ == 0) unstable += outputs->save_unstable(*whole_);
+      try {
+        gather();
+        if (rank_ == 0) unstable += outputs->save_unstable(*whole_);
+      } catch (const PeerStopped&) {
+      } catch (const std::exception& e) {  // a state one World refuses (not finite): as when a save fails
+        unstable += std::string(" (the state could not be saved: ") + e.what() + ")";
+      }
       throw run::InstabilityError(unstable);
     }
     if (!all[1]) continue;
     gather();
     on_root_agreed(comm_, rank_, [&] { outputs->after_step(*whole_); });
   }
-  if (rank_ == 0) {
+  on_root_agreed(comm_, rank_, [&] {
     progress->finish(local().time(), local().step_count());
     outputs->finish();
     if (const run::ChannelMonitor* channel = outputs->channel()) {
@@ -244,10 +256,10 @@ run::RunSummary DistributedRun::run() {
     }
     s.frames = outputs->frames();
     s.output_dir = outputs->path();
-  }
+  });
   s.steps = local().step_count() - first_step;
   s.simulated = local().time();
-  s.wall = std::chrono::duration<double>(clock::now() - wall0).count();
+  s.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   s.dt = dt_;
   if (options_.profile) print_rank_profile(comm_, *ice_, s.steps, s.wall);
   return s;
