@@ -7,7 +7,8 @@
 #   bash scripts/bench_mpi.sh -n 15000   # a smaller pack (and 7.5k per rank for the weak scaling)
 #   bash scripts/bench_mpi.sh -r 3       # medians of 3 repetitions
 #   bash scripts/bench_mpi.sh -c         # the 60 % channel only: `polyfloe run` (outputs included, rank 0 gathering
-#                                        # the ice for each frame) over its first 60 s, 1 x 1, 1 x 2 and 2 x 1
+#                                        # the ice for each frame) over its first 60 s, 1 x 1 and 1 x 2 (no mpirun)
+#                                        # and 2 x 1
 #
 # Prints each run's table (bench_mpi: wall per step, core-us per floe-step, each rank's owned floes, ghosts, bytes
 # and messages per step, seconds per step in the step's exchanges, in renewals and in the test for one) and writes
@@ -58,7 +59,10 @@ channel() {
     walls=()
     for ((k = 0; k < REPS; ++k)); do
       rm -rf "$WORK/channel"
-      "${MPIRUN[@]}" -np "$ranks" "$BUILD_DIR/polyfloe" run dem/scenes/channel.yaml -o "$WORK/channel" \
+      # (one rank: the plain command, without mpirun, with OpenMP's default wait policy, as a user runs threads)
+      local launch=(env -u OMP_WAIT_POLICY)
+      [[ "$ranks" == 1 ]] || launch=("${MPIRUN[@]}" -np "$ranks")
+      "${launch[@]}" "$BUILD_DIR/polyfloe" run dem/scenes/channel.yaml -o "$WORK/channel" \
         --threads "$threads" --set floe_field.concentration=0.6 --set run.duration=60 >"$WORK/channel.txt" 2>/dev/null
       walls+=("$(sed -n 's/^Done: .* simulated in \([0-9.e+-]*\) s wall.*/\1/p' "$WORK/channel.txt")")
     done

@@ -204,6 +204,8 @@ void DistributedWorld::place(const dynamics::WorldState* full) {
   }
   const HaloLayout layout = halo_layout(comm_, mine, margin_);
   renew_due_ = false;
+  busy_ = 0.0;  // (a new decomposition: its load is measured anew)
+  busy_steps_ = 0;
   if (!full) {
     build(owned, layout, nullptr);
     return;
@@ -337,7 +339,14 @@ void DistributedWorld::step(double dt) {
     renew();
     renew_due_ = false;
   }
+  const auto t_step = std::chrono::steady_clock::now();
+  const double waited = halo_->seconds();
   world_->step(dt);
+  const double busy =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_step).count() - (halo_->seconds() - waited);
+  busy_ += busy;
+  retired_.busy_seconds += busy;
+  ++busy_steps_;
   if (ranks() == 1) return;  // no halo to renew
   const auto t0 = std::chrono::steady_clock::now();
   const double mine = moved();
@@ -350,6 +359,17 @@ void DistributedWorld::step(double dt) {
                           "): more than half the halo's margin, " + std::to_string(margin_) +
                           " m, so contacts across ranks may have been missed. The time step is far too large.");
   renew_due_ = most > 0.25 * margin_;
+  // (every rank has taken as many steps since the last measurement: the ranks meet in this collective together)
+  if (!renew_due_ && busy_steps_ % kLoadCheck == 0) renew_due_ = rebalance_due(measured_load(comm_, busy_));
+}
+
+bool DistributedWorld::rebalance_due(const Load& load) {
+  if (load.uneven(kImbalance) && load.largest - load.mean > rebalance_cost_) return true;
+  if (busy_steps_ >= kLoadWindow) {  // (a window no longer: the load of long ago no longer counts)
+    busy_ = 0.0;
+    busy_steps_ = 0;
+  }
+  return false;
 }
 
 void DistributedWorld::count_sent(const std::vector<std::vector<unsigned char>>& out) {
@@ -377,14 +397,21 @@ void DistributedWorld::renew() {
       items.push_back({s.ids[k], s.position[k], 1.0});
     }
   // Each floe to the rank of its region, with the histories of the pairs it evaluates (those of which it has the
-  // lower id); the regions cut anew first where the ranks' shares have drifted apart (the largest more than
-  // kImbalance x the mean: the floes' counts for now, not yet their measured cost).
-  const double share = static_cast<double>(items.size());
-  double largest = 0.0, total = 0.0;
-  MPI_Allreduce(&share, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
-  MPI_Allreduce(&share, &total, 1, MPI_DOUBLE, MPI_SUM, comm_);
+  // lower id); the regions cut anew first where the ranks' measured loads call for it, each floe weighted by its
+  // measured cost. (busy_steps_ is alike on every rank: the steps are collective.)
+  const bool rebalance = busy_steps_ >= kLoadSample && rebalance_due(measured_load(comm_, busy_));
   std::vector<int> to;
-  if (largest > kImbalance * total / ranks()) {
+  if (rebalance) {
+    std::unordered_map<BodyId, std::size_t> item_of;
+    for (std::size_t k = 0; k < items.size(); ++k) item_of[items[k].id] = k;
+    std::vector<int> pairs(items.size(), 0);
+    for (const contact::ContactCache::Entry& e : s.contact_history) {
+      const auto it = item_of.find(e.first.lo);
+      if (it != item_of.end()) ++pairs[it->second];
+    }
+    weigh_by_cost(items, pairs, busy_);
+    busy_ = 0.0;
+    busy_steps_ = 0;
     to = partition_.balance(items);
     ++rebalances_;
   } else {
@@ -432,7 +459,9 @@ void DistributedWorld::renew() {
   std::vector<BodyId> owned_ids = owned.ids;
   build(owned_ids, layout, &full);
   ++renewals_;
-  retired_.renewal_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  retired_.renewal_seconds += took;
+  if (rebalance) MPI_Allreduce(&took, &rebalance_cost_, 1, MPI_DOUBLE, MPI_MAX, comm_);
 }
 
 }  // namespace polyfloe::domain

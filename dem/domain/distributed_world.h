@@ -4,7 +4,8 @@
 // exchanges the ghosts' poses and predicted velocities and the forces of the pairs whose floes have different
 // owners, so that every floe moves, bit for bit, as it would in one World holding every body. As the floes drift the
 // halo is renewed: each floe migrates to the rank of its region with its state and the histories of the contacts it
-// evaluates (the regions cut anew first where the ranks' shares have drifted apart), and the ghosts are chosen anew.
+// evaluates (the regions cut anew first where the ranks' measured loads have drifted apart), and the ghosts are chosen
+// anew.
 //
 // Output: gather() and gather_contacts() give one rank the whole ice (what one World holding every floe would
 // hold), for the run's writers. Frozen ice: each rank holds the bonded faces whose elements it holds.
@@ -78,8 +79,17 @@ class DistributedWorld {
   double margin() const { return margin_; }
   std::uint64_t renewals() const { return renewals_; }
   std::uint64_t rebalances() const { return rebalances_; }  // renewals that cut the regions anew
-  // A renewal cuts the regions anew where the largest rank's share of the floes exceeds this x the mean.
+  // The load balance. Each rank measures the wall-clock time of its World's steps less the time in the step's
+  // exchanges (its busy time: the work, not the waiting), summed since the last rebalance (at most kLoadWindow
+  // steps back). A renewal at least kLoadSample steps into that window compares the ranks' busy times, and cuts the
+  // regions anew where the busiest exceeds kImbalance x the mean and its excess over the mean exceeds what the last
+  // rebalance took (the slowest rank's renewal: a rebalance must pay for itself), each floe weighted by its measured
+  // cost (weigh_by_cost: its rank's busy time shared by the contact pairs each floe evaluates). Every kLoadCheck
+  // steps the ranks compare their busy times anyway, and renew where a rebalance is due, so that a pack that does
+  // not drift is rebalanced too. The cuts depend on timing; the results do not (every decomposition steps the
+  // floes bitwise alike).
   static constexpr double kImbalance = 1.1;
+  static constexpr std::uint64_t kLoadSample = 20, kLoadCheck = 100, kLoadWindow = 1000;
   std::uint64_t migrated() const { return migrated_; }  // floes this rank took over from others, in all renewals
   // What this rank spent on communication since its construction.
   struct Communication {
@@ -88,6 +98,7 @@ class DistributedWorld {
     std::uint64_t renewal_bytes = 0;                  // sent by the renewals (floes migrating, ghosts' rows)
     double renewal_seconds = 0.0;                     // in the renewals, the rebuilt World included [s]
     double check_seconds = 0.0;                       // in the step's test for a renewal (one allreduce) [s]
+    double busy_seconds = 0.0;  // in the World's steps, less the step's exchanges: the rank's work [s]
   };
   Communication communication() const;
   int rank() const { return partition_.rank(); }
@@ -109,6 +120,9 @@ class DistributedWorld {
   // (root < 0), or into `full` on rank `root`.
   void collect_bonds(int root, dynamics::WorldState* full) const;
   void count_sent(const std::vector<std::vector<unsigned char>>& out);  // a renewal's messages to the other ranks
+  // Whether the ranks' measured `load` calls for a rebalance (the header's load balance; the same on every rank); if
+  // not, forgets a window of kLoadWindow steps or more.
+  bool rebalance_due(const Load& load);
   // The farthest any vertex of an owned floe has moved since the last renewal [m] (on this rank).
   double moved() const;
 
@@ -126,6 +140,9 @@ class DistributedWorld {
   Communication retired_;  // the counts of the halos that renewals replaced, and of the renewals
   int threads_ = 1;
   bool renew_due_ = false;
+  double busy_ = 0.0;             // busy seconds in the load's window [s]
+  std::uint64_t busy_steps_ = 0;  // steps in it
+  double rebalance_cost_ = 0.0;   // what the last rebalance took, on the slowest rank [s]
   // The owned floes' poses at the last renewal, by index of the World (re-read by id after it re-stores its bodies).
   mutable std::vector<geometry::Vec2> pos_at_;
   mutable std::vector<double> yaw_at_;

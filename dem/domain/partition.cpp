@@ -130,4 +130,23 @@ void Partition::ranks_of(const geometry::Aabb& box, std::vector<int>& out) const
   std::sort(out.begin(), out.end());
 }
 
+void weigh_by_cost(std::span<PartitionItem> items, std::span<const int> pairs, double busy) {
+  if (items.size() != pairs.size()) throw std::logic_error("weigh_by_cost: one pair count per item");
+  double units = 0.0;
+  for (const int p : pairs) units += 1.0 + p;
+  const double scale = busy > 0.0 && units > 0.0 ? 1e6 * busy / units : 1.0;  // [us] (Zoltan's weights are floats)
+  for (std::size_t k = 0; k < items.size(); ++k) items[k].weight = scale * (1.0 + pairs[k]);
+}
+
+Load measured_load(MPI_Comm comm, double busy) {
+  Load load;
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  double sum = 0.0;
+  MPI_Allreduce(&busy, &load.largest, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(&busy, &sum, 1, MPI_DOUBLE, MPI_SUM, comm);
+  load.mean = sum / ranks;
+  return load;
+}
+
 }  // namespace polyfloe::domain

@@ -85,7 +85,8 @@ void on_root_agreed(MPI_Comm comm, int rank, F&& f) {
 // What each rank spent its run on (polyfloe run --profile under mpirun), printed by rank 0.
 void print_rank_profile(MPI_Comm comm, const domain::DistributedWorld& ice, std::uint64_t steps, double wall) {
   struct Row {
-    double owned, ghosts, halo_bytes, halo_messages, halo_s, renewal_bytes, renewal_s, check_s, renewals, migrated;
+    double owned, ghosts, busy_s, halo_bytes, halo_messages, halo_s, renewal_bytes, renewal_s, check_s, renewals,
+        rebalances, migrated;
   };
   const dynamics::World& w = ice.local();
   double ghosts = 0.0;
@@ -93,6 +94,7 @@ void print_rank_profile(MPI_Comm comm, const domain::DistributedWorld& ice, std:
   const domain::DistributedWorld::Communication c = ice.communication();
   const Row mine{static_cast<double>(w.size()) - ghosts,
                  ghosts,
+                 c.busy_seconds,
                  static_cast<double>(c.halo_bytes),
                  static_cast<double>(c.halo_messages),
                  c.halo_seconds,
@@ -100,21 +102,22 @@ void print_rank_profile(MPI_Comm comm, const domain::DistributedWorld& ice, std:
                  c.renewal_seconds,
                  c.check_seconds,
                  static_cast<double>(ice.renewals()),
+                 static_cast<double>(ice.rebalances()),
                  static_cast<double>(ice.migrated())};
   const std::vector<std::vector<Row>> all = domain::gather_to(comm, 0, std::vector<Row>{mine});
   if (all.empty()) return;
   const double per = 1.0 / static_cast<double>(std::max<std::uint64_t>(steps, 1));
   std::fprintf(stderr,
-               "profile: %.3f s wall for %llu steps; per rank (at the end; exchanges per step, waiting "
+               "profile: %.3f s wall for %llu steps; per rank (at the end; busy time and exchanges per step, waiting "
                "included):\n",
                wall, static_cast<unsigned long long>(steps));
   for (std::size_t r = 0; r < all.size(); ++r) {
     const Row& x = all[r].front();
     std::fprintf(stderr,
-                 "  rank %zu: %.0f bodies + %.0f ghosts; %.0f bytes in %.1f messages, %.3f ms; %.0f renewals (%.0f "
-                 "floes taken over, %.0f bytes, %.3f s), renewal test %.3f s\n",
-                 r, x.owned, x.ghosts, x.halo_bytes * per, x.halo_messages * per, 1e3 * x.halo_s * per, x.renewals,
-                 x.migrated, x.renewal_bytes, x.renewal_s, x.check_s);
+                 "  rank %zu: %.0f bodies + %.0f ghosts; busy %.3f ms; %.0f bytes in %.1f messages, %.3f ms; %.0f "
+                 "renewals (%.0f rebalanced, %.0f floes taken over, %.0f bytes, %.3f s), renewal test %.3f s\n",
+                 r, x.owned, x.ghosts, 1e3 * x.busy_s * per, x.halo_bytes * per, x.halo_messages * per,
+                 1e3 * x.halo_s * per, x.renewals, x.rebalances, x.migrated, x.renewal_bytes, x.renewal_s, x.check_s);
   }
 }
 

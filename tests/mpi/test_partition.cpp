@@ -3,7 +3,8 @@
 //     the mean (Zoltan's tolerance is 5 %, plus a floe's granularity), each floe's rank is the rank that
 //     rank_of() gives for its centroid, and the regions hold whole columns or rows of space (a box around a floe
 //     reaches its rank);
-//   - a cost that grows along x: the weights are balanced, not the counts;
+//   - a cost that grows along x: the weights are balanced, not the counts; a measured busy time shared by the
+//     floes' contact pairs, and the ranks' load compared;
 //   - the same items twice: the same ranks; all floes starting on rank 0 (the other ranks empty): every rank gets some;
 //   - a box over the whole field reaches every rank, a box as long as the field (a floe larger than a region) reaches
 //     more than one where there are several, and no floes at all leaves no cuts (rank 0 answers).
@@ -119,3 +120,26 @@ TEST(Partition, BoxesReachTheRanksTheyCrossAndNoFloesMeansNoCuts) {
   none.ranks_of({Vec2{0.0, 0.0}, Vec2{1.0, 1.0}}, reached);
   EXPECT_EQ(reached, std::vector<int>{0});
 }
+
+namespace {
+
+TEST(Partition, MeasuredCostIsSharedByContactPairsAndTheLoadComparedAcrossRanks) {
+  // A rank busy 2 ms with three floes evaluating 0, 1 and 3 contact pairs: shares 1:2:4 of 2,000 us.
+  std::vector<PartitionItem> items(3);
+  const std::vector<int> pairs{0, 1, 3};
+  domain::weigh_by_cost(items, pairs, 2e-3);
+  EXPECT_NEAR(items[0].weight, 2000.0 / 7.0, 1e-9);
+  EXPECT_NEAR(items[1].weight, 4000.0 / 7.0, 1e-9);
+  EXPECT_NEAR(items[2].weight, 8000.0 / 7.0, 1e-9);
+  domain::weigh_by_cost(items, pairs, 0.0);  // no measurement: 1 + pairs
+  EXPECT_EQ(items[2].weight, 4.0);
+  EXPECT_THROW(domain::weigh_by_cost(items, std::vector<int>{1}, 1.0), std::logic_error);
+  // Rank r busy (r + 1) s: the busiest works ranks s, the mean is (ranks + 1) / 2 s.
+  const domain::Load load = domain::measured_load(MPI_COMM_WORLD, rank() + 1.0);
+  EXPECT_EQ(load.largest, static_cast<double>(ranks()));
+  EXPECT_DOUBLE_EQ(load.mean, 0.5 * (ranks() + 1));
+  EXPECT_EQ(load.uneven(1.1), ranks() > 1);
+  EXPECT_FALSE(domain::Load{}.uneven(1.1));  // nothing measured: never uneven
+}
+
+}  // namespace
