@@ -206,6 +206,7 @@ void DistributedWorld::place(const dynamics::WorldState* full) {
   renew_due_ = false;
   busy_ = 0.0;  // (a new decomposition: its load is measured anew)
   busy_steps_ = 0;
+  rebalance_now_ = false;
   if (!full) {
     build(owned, layout, nullptr);
     return;
@@ -360,14 +361,16 @@ void DistributedWorld::step(double dt) {
                           " m, so contacts across ranks may have been missed. The time step is far too large.");
   renew_due_ = most > 0.25 * margin_;
   // (every rank has taken as many steps since the last measurement: the ranks meet in this collective together)
-  if (!renew_due_ && busy_steps_ % kLoadCheck == 0) renew_due_ = rebalance_due(measured_load(comm_, busy_));
+  if (!renew_due_ && busy_steps_ % kLoadCheck == 0)
+    renew_due_ = rebalance_now_ = rebalance_due(measured_load(comm_, busy_));
 }
 
 bool DistributedWorld::rebalance_due(const Load& load) {
   if (load.uneven(kImbalance) && load.largest - load.mean > rebalance_cost_) return true;
-  if (busy_steps_ >= kLoadWindow) {  // (a window no longer: the load of long ago no longer counts)
-    busy_ = 0.0;
-    busy_steps_ = 0;
+  if (busy_steps_ >= kLoadWindow) {  // a window no longer: the load of long ago no longer counts, and the cost of
+    busy_ = 0.0;                     // the last rebalance counts half (one slow rebalance does not bar the next
+    busy_steps_ = 0;                 // for good)
+    rebalance_cost_ *= 0.5;
   }
   return false;
 }
@@ -399,7 +402,8 @@ void DistributedWorld::renew() {
   // Each floe to the rank of its region, with the histories of the pairs it evaluates (those of which it has the
   // lower id); the regions cut anew first where the ranks' measured loads call for it, each floe weighted by its
   // measured cost. (busy_steps_ is alike on every rank: the steps are collective.)
-  const bool rebalance = busy_steps_ >= kLoadSample && rebalance_due(measured_load(comm_, busy_));
+  const bool rebalance = rebalance_now_ || (busy_steps_ >= kLoadSample && rebalance_due(measured_load(comm_, busy_)));
+  rebalance_now_ = false;
   std::vector<int> to;
   if (rebalance) {
     std::unordered_map<BodyId, std::size_t> item_of;
@@ -409,7 +413,7 @@ void DistributedWorld::renew() {
       const auto it = item_of.find(e.first.lo);
       if (it != item_of.end()) ++pairs[it->second];
     }
-    weigh_by_cost(items, pairs, busy_);
+    weigh_by_cost(items, pairs, std::max(busy_, 1e-9));  // (in microseconds on every rank, also one that idled)
     busy_ = 0.0;
     busy_steps_ = 0;
     to = partition_.balance(items);

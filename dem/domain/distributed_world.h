@@ -80,14 +80,15 @@ class DistributedWorld {
   std::uint64_t renewals() const { return renewals_; }
   std::uint64_t rebalances() const { return rebalances_; }  // renewals that cut the regions anew
   // The load balance. Each rank measures the wall-clock time of its World's steps less the time in the step's
-  // exchanges (its busy time: the work, not the waiting), summed since the last rebalance (at most kLoadWindow
-  // steps back). A renewal at least kLoadSample steps into that window compares the ranks' busy times, and cuts the
-  // regions anew where the busiest exceeds kImbalance x the mean and its excess over the mean exceeds what the last
-  // rebalance took (the slowest rank's renewal: a rebalance must pay for itself), each floe weighted by its measured
-  // cost (weigh_by_cost: its rank's busy time shared by the contact pairs each floe evaluates). Every kLoadCheck
-  // steps the ranks compare their busy times anyway, and renew where a rebalance is due, so that a pack that does
-  // not drift is rebalanced too. The cuts depend on timing; the results do not (every decomposition steps the
-  // floes bitwise alike).
+  // exchanges (its busy time: the work, not the waiting), summed over a window that starts at the last rebalance
+  // (or restore()) and starts again after kLoadWindow steps. A renewal at least kLoadSample steps into the window
+  // compares the ranks' busy times, and cuts the regions anew where the busiest exceeds kImbalance x the mean and
+  // its excess over the mean exceeds what the last rebalance took (the slowest rank's renewal, halved at each new
+  // window: a rebalance must pay for itself), each floe weighted by its measured cost (weigh_by_cost: its rank's
+  // busy time shared by the contact pairs each floe evaluates). The ranks also compare their busy times whenever
+  // the window's steps reach a multiple of kLoadCheck and no renewal is due, and renew where a rebalance is due,
+  // so that a pack that does not drift is rebalanced too. The cuts depend on timing; the results do not (every
+  // decomposition steps the floes bitwise alike).
   static constexpr double kImbalance = 1.1;
   static constexpr std::uint64_t kLoadSample = 20, kLoadCheck = 100, kLoadWindow = 1000;
   std::uint64_t migrated() const { return migrated_; }  // floes this rank took over from others, in all renewals
@@ -142,7 +143,8 @@ class DistributedWorld {
   bool renew_due_ = false;
   double busy_ = 0.0;             // busy seconds in the load's window [s]
   std::uint64_t busy_steps_ = 0;  // steps in it
-  double rebalance_cost_ = 0.0;   // what the last rebalance took, on the slowest rank [s]
+  double rebalance_cost_ = 0.0;   // what the last rebalance took, on the slowest rank [s] (halved each window)
+  bool rebalance_now_ = false;    // the last check found a rebalance due (the renewal it asked for does it)
   // The owned floes' poses at the last renewal, by index of the World (re-read by id after it re-stores its bodies).
   mutable std::vector<geometry::Vec2> pos_at_;
   mutable std::vector<double> yaw_at_;

@@ -139,12 +139,18 @@ void weigh_by_cost(std::span<PartitionItem> items, std::span<const int> pairs, d
 }
 
 Load measured_load(MPI_Comm comm, double busy) {
-  Load load;
+  // Every rank's time, summed in rank order on every rank: the same bits everywhere (a reduction's sum of doubles
+  // need not be), so that the ranks' decisions on it agree.
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
+  std::vector<double> all(static_cast<std::size_t>(ranks), 0.0);
+  MPI_Allgather(&busy, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, comm);
+  Load load;
   double sum = 0.0;
-  MPI_Allreduce(&busy, &load.largest, 1, MPI_DOUBLE, MPI_MAX, comm);
-  MPI_Allreduce(&busy, &sum, 1, MPI_DOUBLE, MPI_SUM, comm);
+  for (const double b : all) {
+    load.largest = std::max(load.largest, b);
+    sum += b;
+  }
   load.mean = sum / ranks;
   return load;
 }

@@ -60,7 +60,8 @@ class Partition {
 // (busy <= 0): 1 + pairs.
 void weigh_by_cost(std::span<PartitionItem> items, std::span<const int> pairs, double busy);
 
-// The ranks' measured load (collective over `comm`): the busiest rank's busy seconds and the mean over the ranks.
+// The ranks' measured load (collective over `comm`): the busiest rank's busy seconds and the mean over the ranks,
+// the same bits on every rank (summed in rank order, not by a reduction).
 struct Load {
   double largest = 0.0, mean = 0.0;  // [s]
   // Whether the busiest rank works more than `factor` x the mean (never without a measurement).
