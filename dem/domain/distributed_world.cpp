@@ -204,8 +204,7 @@ void DistributedWorld::place(const dynamics::WorldState* full) {
   }
   const HaloLayout layout = halo_layout(comm_, mine, margin_);
   renew_due_ = false;
-  busy_ = 0.0;  // (a new decomposition: its load is measured anew)
-  busy_steps_ = 0;
+  start_load_window();  // (a new decomposition: its load is measured anew)
   rebalance_now_ = false;
   if (!full) {
     build(owned, layout, nullptr);
@@ -346,7 +345,7 @@ void DistributedWorld::step(double dt) {
   const double busy =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_step).count() - (halo_->seconds() - waited);
   busy_ += busy;
-  retired_.busy_seconds += busy;
+  busy_total_ += busy;
   ++busy_steps_;
   if (ranks() == 1) return;  // no halo to renew
   const auto t0 = std::chrono::steady_clock::now();
@@ -368,11 +367,15 @@ void DistributedWorld::step(double dt) {
 bool DistributedWorld::rebalance_due(const Load& load) {
   if (load.uneven(kImbalance) && load.largest - load.mean > rebalance_cost_) return true;
   if (busy_steps_ >= kLoadWindow) {  // a window no longer: the load of long ago no longer counts, and the cost of
-    busy_ = 0.0;                     // the last rebalance counts half (one slow rebalance does not bar the next
-    busy_steps_ = 0;                 // for good)
-    rebalance_cost_ *= 0.5;
+    start_load_window();             // the last rebalance counts half (one slow rebalance does not bar the next
+    rebalance_cost_ *= 0.5;          // for good)
   }
   return false;
+}
+
+void DistributedWorld::start_load_window() {
+  busy_ = 0.0;
+  busy_steps_ = 0;
 }
 
 void DistributedWorld::count_sent(const std::vector<std::vector<unsigned char>>& out) {
@@ -382,6 +385,7 @@ void DistributedWorld::count_sent(const std::vector<std::vector<unsigned char>>&
 
 DistributedWorld::Communication DistributedWorld::communication() const {
   Communication c = retired_;
+  c.busy_seconds = busy_total_;
   c.halo_bytes += halo_->bytes_sent();
   c.halo_messages += halo_->messages_sent();
   c.halo_seconds += halo_->seconds();
@@ -413,9 +417,8 @@ void DistributedWorld::renew() {
       const auto it = item_of.find(e.first.lo);
       if (it != item_of.end()) ++pairs[it->second];
     }
-    weigh_by_cost(items, pairs, std::max(busy_, 1e-9));  // (in microseconds on every rank, also one that idled)
-    busy_ = 0.0;
-    busy_steps_ = 0;
+    weigh_by_cost(items, pairs, busy_);
+    start_load_window();
     to = partition_.balance(items);
     ++rebalances_;
   } else {

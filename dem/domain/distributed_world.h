@@ -124,6 +124,7 @@ class DistributedWorld {
   // Whether the ranks' measured `load` calls for a rebalance (the header's load balance; the same on every rank); if
   // not, forgets a window of kLoadWindow steps or more.
   bool rebalance_due(const Load& load);
+  void start_load_window();  // the load's window empty
   // The farthest any vertex of an owned floe has moved since the last renewal [m] (on this rank).
   double moved() const;
 
@@ -142,6 +143,7 @@ class DistributedWorld {
   int threads_ = 1;
   bool renew_due_ = false;
   double busy_ = 0.0;             // busy seconds in the load's window [s]
+  double busy_total_ = 0.0;       // and since the construction [s]
   std::uint64_t busy_steps_ = 0;  // steps in it
   double rebalance_cost_ = 0.0;   // what the last rebalance took, on the slowest rank [s] (halved each window)
   bool rebalance_now_ = false;    // the last check found a rebalance due (the renewal it asked for does it)

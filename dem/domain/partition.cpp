@@ -134,7 +134,8 @@ void weigh_by_cost(std::span<PartitionItem> items, std::span<const int> pairs, d
   if (items.size() != pairs.size()) throw std::logic_error("weigh_by_cost: one pair count per item");
   double units = 0.0;
   for (const int p : pairs) units += 1.0 + p;
-  const double scale = busy > 0.0 && units > 0.0 ? 1e6 * busy / units : 1.0;  // [us] (Zoltan's weights are floats)
+  // [us] (Zoltan's weights are floats); a rank that measured nothing still weighs its floes, by a nanosecond
+  const double scale = units > 0.0 ? 1e6 * std::max(busy, 1e-9) / units : 0.0;
   for (std::size_t k = 0; k < items.size(); ++k) items[k].weight = scale * (1.0 + pairs[k]);
 }
 

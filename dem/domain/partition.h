@@ -54,10 +54,10 @@ class Partition {
   std::vector<PartitionItem> items_;  // what the callbacks hand Zoltan during balance()
 };
 
-// Each floe's cost, for balance(): this rank's measured busy time `busy` [s] (as microseconds) shared among its `items` in proportion
-// to 1 + the contact pairs each evaluates (`pairs`, in the items' order), a pair's narrow phase and law costing
-// about what a floe's own stages do (bench_step: 0.2-0.5 us per floe-step either way). Without a measurement
-// (busy <= 0): 1 + pairs.
+// Each floe's cost, for balance(): this rank's measured busy time `busy` [s] (at least 1 ns), as microseconds,
+// shared among its `items` in proportion to 1 + the contact pairs each evaluates (`pairs`, in the items' order), a
+// pair's narrow phase and law costing about what a floe's own stages do (bench_step: 0.2-0.5 us per floe-step
+// either way).
 void weigh_by_cost(std::span<PartitionItem> items, std::span<const int> pairs, double busy);
 
 // The ranks' measured load (collective over `comm`): the busiest rank's busy seconds and the mean over the ranks,
