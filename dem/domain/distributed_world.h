@@ -54,6 +54,9 @@ class DistributedWorld {
   // too large (a CollectiveError). One rank has no halo: nothing is tested or renewed.
   void step(double dt);
 
+  // Collective: the forces and contacts of the present state, evaluated (as the first step evaluates them, where it
+  // finds none: each rank's World then lists the contacts it evaluated, for a frame written before the first step).
+  void compute_forces() { world_->compute_forces(0.0); }
   // Collective: the whole ice's state on rank `root` (every floe's rows in id order, every contact history in key
   // order: bit for bit what one World holding every floe gives as World::state()); none on the other ranks. What a
   // checkpoint stores.

@@ -60,14 +60,24 @@ class ErrorCatcher {
   std::string messages_;
 };
 
-// The frame number of `name` if it is <stem>_<digits><extension>, else -1.
-long frame_number(const std::string& name, const std::string& stem, const char* extension) {
+// The frame number of `name` if it is one of a frame's files, else -1: <stem>_<digits> and then <extension> (the
+// frame), .pvtp (its list of pieces) or _<digits><extension> (a piece). `leading`: the name need only begin so
+// (a temporary file of the frame's, named so and more).
+long frame_number(const std::string& name, const std::string& stem, const std::string& extension,
+                  bool leading = false) {
   const std::string prefix = stem + "_";
   if (name.rfind(prefix, 0) != 0) return -1;
   const std::size_t digits = name.find_first_not_of("0123456789", prefix.size());
   if (digits == prefix.size() || digits == std::string::npos || digits - prefix.size() > 9) return -1;
-  if (name.compare(digits, std::string::npos, extension) != 0) return -1;
-  return std::stol(name.substr(prefix.size(), digits - prefix.size()));
+  auto ends_so = [&](std::size_t at, const std::string& tail) {
+    return leading ? name.compare(at, tail.size(), tail) == 0 : name.compare(at, std::string::npos, tail) == 0;
+  };
+  bool frame_file = ends_so(digits, extension) || ends_so(digits, ".pvtp");
+  if (!frame_file && name[digits] == '_') {
+    const std::size_t piece = name.find_first_not_of("0123456789", digits + 1);
+    frame_file = piece != digits + 1 && piece != std::string::npos && ends_so(piece, extension);
+  }
+  return frame_file ? std::stol(name.substr(prefix.size(), digits - prefix.size())) : -1;
 }
 
 }  // namespace
@@ -130,8 +140,8 @@ vtkSmartPointer<vtkIdTypeArray> iota(vtkIdType count) {
   return a;
 }
 
-// Removes DIR/<stem>/<stem>_NNNNNN<extension> for every N >= first: with a manifest, the listed ones only; without,
-// every such file (and hidden temporaries of such frames).
+// Removes the files of frames N >= first of DIR/<stem> (<stem>_NNNNNN<extension>, or a .pvtp and its pieces): with a
+// manifest, the listed ones only; without, every such file (and hidden temporaries of such frames).
 void remove_frames_from(const fs::path& dir, const std::string& stem, const char* extension, int first,
                         const OutputManifest* manifest) {
   if (manifest) {
@@ -150,12 +160,7 @@ void remove_frames_from(const fs::path& dir, const std::string& stem, const char
   for (const auto& entry : fs::directory_iterator(sub, ec)) {
     std::string f = entry.path().filename().string();
     if (!f.empty() && f[0] == '.') f.erase(0, 1);
-    const std::string prefix = stem + "_";
-    if (f.rfind(prefix, 0) != 0) continue;
-    const std::size_t digits = f.find_first_not_of("0123456789", prefix.size());
-    if (digits == prefix.size() || digits == std::string::npos) continue;
-    if (f.compare(digits, std::string(extension).size(), extension) != 0) continue;
-    if (std::stol(f.substr(prefix.size(), digits - prefix.size())) >= first) doomed.push_back(entry.path());
+    if (frame_number(f, stem, extension, true) >= first) doomed.push_back(entry.path());
   }
   for (const fs::path& p : doomed) {
     fs::remove(p, ec);
@@ -186,8 +191,12 @@ void PvdCollection::resume(std::span<const double> times, const std::string& ste
   entries_.clear();
   count_ = 0;
   for (std::size_t k = 0; k < times.size(); ++k) {
+    const std::string pieces = stem + "/" + frame_name(stem, static_cast<int>(k), ".pvtp");
+    std::error_code ec;
+    const bool in_pieces = fs::exists(file_.parent_path() / pieces, ec);
     entries_ += "    <DataSet timestep=\"" + exact(times[k]) + "\" group=\"\" part=\"0\" file=\"" +
-                xml_escape(stem + "/" + frame_name(stem, static_cast<int>(k), extension)) + "\"/>\n";
+                xml_escape(in_pieces ? pieces : stem + "/" + frame_name(stem, static_cast<int>(k), extension)) +
+                "\"/>\n";
     ++count_;
   }
   record(file_.filename().string());

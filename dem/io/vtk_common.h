@@ -10,11 +10,15 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 class vtkXMLWriter;
 
 namespace polyfloe::io {
 class OutputManifest;
+}
+namespace polyfloe::dynamics {
+class World;
 }
 
 namespace polyfloe::io::detail {
@@ -33,6 +37,16 @@ void remove_frames_from(const std::filesystem::path& dir, const std::string& ste
 std::string frame_name(const std::string& stem, int frame, const char* extension = ".vtp");
 // Writes `data` as XML PolyData (binary appended, zlib) via a temporary sibling renamed into place; throws IoError.
 void write_polydata(vtkPolyData* data, const std::filesystem::path& target);
+// The planar frames (vtk_writer.cpp): what the World owns of its bodies, contacts and bonded faces, or none of them
+// (`header_only`: the arrays, empty, for a .pvtp's list).
+vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double water_density, bool header_only);
+vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world, double water_density, bool header_only);
+vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world, double water_density, bool header_only);
+// A PPolyData file (.pvtp) at `target` that lists `pieces` (file names relative to its folder) with the arrays of
+// `header`, written atomically; throws IoError naming the file.
+void write_pvtp(vtkPolyData* header, const std::vector<std::string>& pieces, const std::filesystem::path& target);
+// "stem_NNNNNN_K.vtp": piece K of frame `frame`.
+std::string piece_name(const std::string& stem, int frame, int piece);
 // Field data TIME [s] and CYCLE (the step) that ParaView reads.
 void add_time(vtkDataObject* data, double t, std::uint64_t step);
 // 0, 1, ..., count - 1

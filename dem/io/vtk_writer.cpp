@@ -36,7 +36,7 @@ using namespace detail;
 
 namespace {
 
-void add_time(vtkDataObject* data, const dynamics::World& world) {
+void add_world_time(vtkDataObject* data, const dynamics::World& world) {
   detail::add_time(data, world.time(), world.step_count());
 }
 
@@ -54,9 +54,21 @@ double top_of(const dynamics::World& world, int i, double water_density) {
   return world.thickness(i) - draft_of(world, i, water_density);
 }
 
+// The bodies a frame shows, in id order: those `world` owns (a whole World: every body; a rank's: all but its
+// ghosts), or none (`header_only`: the frame's arrays, empty, as a .pvtp lists them).
+std::vector<int> shown_bodies(const dynamics::World& world, bool header_only) {
+  std::vector<int> shown;
+  if (header_only) return shown;
+  shown.reserve(world.size());
+  for (const int i : world.id_order())
+    if (!world.is_ghost(i)) shown.push_back(i);
+  return shown;
+}
+
 // The mean normal and |shear| stress over each element's intact bond points, on all its cells (a body of n
-// vertices has n + 2 cells, in id order: floes_polydata).
-void add_bond_stress(vtkPolyData& data, const dynamics::World& world, const bonds::BondSet& b, vtkIdType n_cells) {
+// vertices has n + 2 cells, in the order of `shown`: floes_polydata).
+void add_bond_stress(vtkPolyData& data, const dynamics::World& world, const bonds::BondSet& b,
+                     const std::vector<int>& shown, vtkIdType n_cells) {
   const int bodies = static_cast<int>(world.size());
   std::vector<double> sigma(static_cast<std::size_t>(bodies), 0.0), tau(sigma.size(), 0.0), count(sigma.size(), 0.0);
   const auto per = static_cast<std::size_t>(b.material().points_per_face);
@@ -73,7 +85,7 @@ void add_bond_stress(vtkPolyData& data, const dynamics::World& world, const bond
   auto normal = make_array<vtkDoubleArray>("bond_normal_stress", 1, n_cells);
   auto shear = make_array<vtkDoubleArray>("bond_shear_stress", 1, n_cells);
   vtkIdType c = 0;
-  for (const int i : world.id_order()) {
+  for (const int i : shown) {
     const auto k = static_cast<std::size_t>(i);
     const double sn = count[k] > 0 ? sigma[k] / count[k] : 0.0, st = count[k] > 0 ? tau[k] / count[k] : 0.0;
     for (std::size_t j = 0; j < world.world_vertices(i).size() + 2; ++j, ++c) {
@@ -115,11 +127,16 @@ void add_prism(std::span<const Vec2> ring, double bottom, double top, vtkIdType 
   }
 }
 
-// Every body as a prism floating at its equilibrium draft, in id order: points are the bottom ring then the top ring
-// of each body; cells are the top polygon, the bottom polygon (reversed) and one quad per edge, all facing outward.
-vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double water_density) {
+}  // namespace
+
+// Every body the World owns as a prism floating at its equilibrium draft, in id order: points are the bottom ring
+// then the top ring of each body; cells are the top polygon, the bottom polygon (reversed) and one quad per edge, all
+// facing outward.
+vtkSmartPointer<vtkPolyData> detail::floes_polydata(const dynamics::World& world, double water_density,
+                                                    bool header_only) {
+  const std::vector<int> shown = shown_bodies(world, header_only);
   vtkIdType n_points = 0, n_cells = 0, n_conn = 0;
-  for (int i = 0; i < static_cast<int>(world.size()); ++i) {
+  for (const int i : shown) {
     const auto n = static_cast<vtkIdType>(world.world_vertices(i).size());
     n_points += 2 * n;
     n_cells += n + 2;
@@ -144,7 +161,7 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
   double* xyz = coords->GetPointer(0);
   vtkIdType p0 = 0, cell = 0, k = 0;
   offsets->SetValue(0, 0);
-  for (const int i : world.id_order()) {
+  for (const int i : shown) {
     const auto ring = world.world_vertices(i);
     const auto n = static_cast<vtkIdType>(ring.size());
     const double h = world.thickness(i);  // [m]
@@ -179,16 +196,21 @@ vtkSmartPointer<vtkPolyData> floes_polydata(const dynamics::World& world, double
         static_cast<vtkDataArray*>(omega), static_cast<vtkDataArray*>(thickness), static_cast<vtkDataArray*>(motion)}) {
     data->GetCellData()->AddArray(a);
   }
-  if (const bonds::BondSet* b = world.bonds()) add_bond_stress(*data, world, *b, n_cells);
+  if (const bonds::BondSet* b = world.bonds()) add_bond_stress(*data, world, *b, shown, n_cells);
   data->GetCellData()->SetActiveScalars("speed");
-  add_time(data, world);
+  add_world_time(data, world);
   return data;
 }
 
-// One line per bond face, where the face is now (along element a's side of it), with its state as cell data.
-vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world, double water_density) {
+// One line per bond face, where the face is now (along element a's side of it), with its state as cell data: the
+// faces whose lower-id element the World owns (a whole World: every face), or none (`header_only`).
+vtkSmartPointer<vtkPolyData> detail::bonds_polydata(const dynamics::World& world, double water_density,
+                                                    bool header_only) {
   const bonds::BondSet& b = *world.bonds();
-  const auto n = static_cast<vtkIdType>(b.faces());
+  std::vector<std::size_t> shown;
+  for (std::size_t f = 0; f < b.faces() && !header_only; ++f)
+    if (!world.is_ghost(world.index_of(std::min(b.face_id_a(f), b.face_id_b(f))))) shown.push_back(f);
+  const auto n = static_cast<vtkIdType>(shown.size());
   const std::size_t per = static_cast<std::size_t>(b.material().points_per_face);
   auto coords = make_array<vtkDoubleArray>("Points", 3, 2 * n);
   auto intact = make_array<vtkTypeInt32Array>("intact", 1, n);
@@ -199,7 +221,7 @@ vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world, double
   const auto pos = world.positions();
   const auto yaw = world.yaws();
   for (vtkIdType f = 0; f < n; ++f) {
-    const auto fu = static_cast<std::size_t>(f);
+    const std::size_t fu = shown[static_cast<std::size_t>(f)];
     const auto a = static_cast<std::size_t>(b.face_a(fu));
     const double c = std::cos(yaw[a]), s = std::sin(yaw[a]);
     const std::size_t p0 = b.face_first_point(fu), p1 = p0 + per - 1;
@@ -241,15 +263,17 @@ vtkSmartPointer<vtkPolyData> bonds_polydata(const dynamics::World& world, double
         static_cast<vtkDataArray*>(shear), static_cast<vtkDataArray*>(broken)})
     data->GetCellData()->AddArray(a);
   data->GetCellData()->SetActiveScalars("intact");
-  add_time(data, world);
+  add_world_time(data, world);
   return data;
 }
 
-// One vertex per active contact at its point, on the higher of the two bodies' top faces (where ParaView shows it
-// over the floes), with the contact's forces and geometry as point data.
-vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world, double water_density) {
+// One vertex per contact of the World's last evaluation (a rank's: those it evaluated) at its point, on the higher
+// of the two bodies' top faces (where ParaView shows it over the floes), with the contact's forces and geometry as
+// point data; none for `header_only`.
+vtkSmartPointer<vtkPolyData> detail::contacts_polydata(const dynamics::World& world, double water_density,
+                                                       bool header_only) {
   const auto& contacts = world.contacts();
-  const auto n = static_cast<vtkIdType>(contacts.size());
+  const auto n = header_only ? vtkIdType{0} : static_cast<vtkIdType>(contacts.size());
   auto coords = make_array<vtkDoubleArray>("Points", 3, n);
   auto force = make_array<vtkDoubleArray>("force", 3, n);
   auto normal_force = make_array<vtkDoubleArray>("normal_force", 1, n);
@@ -294,18 +318,17 @@ vtkSmartPointer<vtkPolyData> contacts_polydata(const dynamics::World& world, dou
     data->GetPointData()->AddArray(a);
   }
   data->GetPointData()->SetActiveScalars("normal_force");
-  add_time(data, world);
+  add_world_time(data, world);
   return data;
 }
 
-}  // namespace
-
 VtkSeriesWriter::VtkSeriesWriter(const fs::path& dir, bool write_contacts, double water_density,
-                                 OutputManifest* manifest)
+                                 OutputManifest* manifest, int pieces)
     : dir_(dir),
       write_contacts_(write_contacts),
       water_density_(water_density),
       manifest_(manifest),
+      pieces_(pieces),
       floes_pvd_(dir / "floes.pvd", manifest),
       contacts_pvd_(dir / "contacts.pvd", manifest),
       bonds_pvd_(dir / "bonds.pvd", manifest) {
@@ -323,24 +346,29 @@ VtkSeriesWriter::VtkSeriesWriter(const fs::path& dir, bool write_contacts, doubl
 }
 
 void VtkSeriesWriter::write_frame(const dynamics::World& world) {
-  const std::string floes_file = "floes/" + frame_name("floes", frames_);
-  floes_pvd_.record(floes_file);
-  write_polydata(floes_polydata(world, water_density_), dir_ / floes_file);
-  std::string contacts_file;
-  if (write_contacts_) {
-    contacts_file = "contacts/" + frame_name("contacts", frames_);
-    contacts_pvd_.record(contacts_file);
-    write_polydata(contacts_polydata(world, water_density_), dir_ / contacts_file);
-  }
-  std::string bonds_file;
+  // One series' frame: the whole World's in one file, or the list of its pieces (the arrays from an empty one).
+  auto write = [&](PvdCollection& pvd, const std::string& stem, auto&& polydata) {
+    const std::string file = stem + "/" + frame_name(stem, frames_, pieces_ > 0 ? ".pvtp" : ".vtp");
+    pvd.record(file);
+    if (pieces_ == 0) {
+      write_polydata(polydata(world, water_density_, false), dir_ / file);
+      return file;
+    }
+    std::vector<std::string> pieces;
+    for (int k = 0; k < pieces_; ++k) {
+      pieces.push_back(piece_name(stem, frames_, k));
+      if (!fs::exists(dir_ / stem / pieces.back()))
+        throw IoError("cannot write " + (dir_ / file).string() + ": its piece " + pieces.back() + " is missing");
+    }
+    write_pvtp(polydata(world, water_density_, true), pieces, dir_ / file);
+    return file;
+  };
+  const std::string floes_file = write(floes_pvd_, "floes", floes_polydata);
+  std::string contacts_file, bonds_file;
+  if (write_contacts_) contacts_file = write(contacts_pvd_, "contacts", contacts_polydata);
   if (world.bonds()) {
-    std::error_code ec;
-    bonds_pvd_.record("bonds/");
-    fs::create_directories(dir_ / "bonds", ec);
-    if (ec) throw IoError("cannot create VTK output folder " + (dir_ / "bonds").string() + ": " + ec.message());
-    bonds_file = "bonds/" + frame_name("bonds", frames_);
-    bonds_pvd_.record(bonds_file);
-    write_polydata(bonds_polydata(world, water_density_), dir_ / bonds_file);
+    make_bonds_folder();
+    bonds_file = write(bonds_pvd_, "bonds", bonds_polydata);
   }
   // Collections last: they only ever list frames that are complete on disk.
   floes_pvd_.add(world.time(), floes_file);

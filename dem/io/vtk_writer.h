@@ -7,6 +7,12 @@
 // Each .vtp is written under a temporary name and renamed into place, and each .pvd is rewritten atomically
 // after the frame it lists, so a run killed at any moment leaves a collection that parses and lists only
 // complete frames. VTK itself stays behind this header (only the .cpp includes it).
+//
+// Or in pieces (output.vtk_pieces; ParaView's parallel convention): frame NNNNNN of each series is a PPolyData file
+// DIR/floes/floes_NNNNNN.pvtp listing its pieces DIR/floes/floes_NNNNNN_K.vtp, K = 0 .. pieces - 1, and the .pvd
+// lists the .pvtp. Under mpirun piece K is rank K's: the floes it owns, the contacts it evaluated and the bonded
+// faces whose lower-id element it owns, each written by that rank (write_vtk_piece); one process writes one piece.
+// Each body, contact and face is in exactly one piece, with the values the single file gives it.
 #pragma once
 
 #include <cstdint>
@@ -38,8 +44,8 @@ class PvdCollection {
   std::size_t size() const { return count_; }
   // The whole XML text as it is on disk.
   std::string text() const;
-  // Replaces the entries by frames 0..times.size()-1 named <stem>/<stem>_NNNNNN<extension> (a resumed run) and
-  // rewrites the file.
+  // Replaces the entries by frames 0..times.size()-1 named <stem>/<stem>_NNNNNN<extension>, or .pvtp where that is
+  // on disk (a frame written in pieces), for a resumed run, and rewrites the file.
   void resume(std::span<const double> times, const std::string& stem, const char* extension);
 
  private:
@@ -55,11 +61,18 @@ class VtkSeriesWriter {
   // frame. `water_density` [kg/m^3] sets each floe's draft, so prisms float at their equilibrium level.
   // `manifest` (optional): where every file is listed before it is made; a resumed run then removes only listed
   // frames.
+  // `pieces` > 0: frames in that many pieces (the header), which write_frame() does not write itself.
   VtkSeriesWriter(const std::filesystem::path& dir, bool write_contacts, double water_density,
-                  OutputManifest* manifest = nullptr);
+                  OutputManifest* manifest = nullptr, int pieces = 0);
 
-  // Writes frame number frames() at time world.time() [s]. Throws IoError naming the file on failure.
+  // Writes frame number frames() at time world.time() [s]. Throws IoError naming the file on failure. In pieces:
+  // lists the pieces in each series' .pvtp (they must be on disk, written since begin_pieces()) and the .pvtp in the
+  // .pvd; `world` gives the arrays' names and types.
   void write_frame(const dynamics::World& world);
+  // In pieces, before they are written: every piece of frame frames() listed in the manifest, and its folders made.
+  // `bonds`: the world has bonds.
+  void begin_pieces(bool bonds);
+  int pieces() const { return pieces_; }
   int frames() const { return frames_; }
   // Continues a run whose frames 0..frame_times.size()-1 are on disk: the collections list exactly those, and the
   // frame files of later frames (written after the checkpoint the run resumes from) are removed. `bonds`: the
@@ -69,15 +82,24 @@ class VtkSeriesWriter {
   const std::filesystem::path& directory() const { return dir_; }
 
  private:
+  void make_bonds_folder();  // DIR/bonds, listed in the manifest
+
   std::filesystem::path dir_;
   bool write_contacts_;
   double water_density_;  // [kg/m^3]
   OutputManifest* manifest_;
+  int pieces_ = 0;
   int frames_ = 0;
   PvdCollection floes_pvd_;
   PvdCollection contacts_pvd_;
   PvdCollection bonds_pvd_;
 };
+
+// Piece `piece` of frame `frame` of DIR's series (floes; contacts where `contacts`; bonds where the world has them):
+// what `world` owns, as VtkSeriesWriter's header says, each file written under a temporary name and renamed into
+// place. The folders must exist (VtkSeriesWriter::begin_pieces). Throws IoError naming the file on failure.
+void write_vtk_piece(const std::filesystem::path& dir, const dynamics::World& world, int frame, int piece,
+                     bool contacts, double water_density);
 
 // VTK output of a spatial scene (dynamics/spatial_world.h):
 //   DIR/bodies.pvd, DIR/bodies/bodies_NNNNNN.vtp        every polyhedron, one polygon per face; cell data: id,

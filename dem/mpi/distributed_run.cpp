@@ -13,6 +13,8 @@
 #include "domain/collectives.h"
 #include "forcing/field.h"
 #include "io/progress.h"
+#include "io/vtk_writer.h"
+#include "formats/atomic_file.h"
 #include "run/guard.h"
 #include "run/run_outputs.h"
 #include "run/velocity_grid.h"
@@ -65,6 +67,22 @@ void on_root_agreed(MPI_Comm comm, int rank, F&& f) {
   MPI_Bcast(&stop, 1, MPI_INT, 0, comm);
   if (failed) std::rethrow_exception(failed);
   if (stop) throw PeerStopped();
+}
+
+// Collective: rank `root`'s `text` on every rank.
+std::string broadcast(MPI_Comm comm, int root, std::string text) {
+  int length = static_cast<int>(text.size());
+  MPI_Bcast(&length, 1, MPI_INT, root, comm);
+  text.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(text.data(), length, MPI_CHAR, root, comm);
+  return text;
+}
+
+// Collective: the message of the lowest rank whose `mine` is not empty, on every rank; empty where none has one.
+std::string first_message(MPI_Comm comm, int rank, int ranks, std::string mine) {
+  int who = mine.empty() ? ranks : rank, first = 0;
+  MPI_Allreduce(&who, &first, 1, MPI_INT, MPI_MIN, comm);
+  return first == ranks ? std::string() : broadcast(comm, first, std::move(mine));
 }
 
 // An error this rank met alone, in the middle of a collective step: reported here, and the job aborted (the other
@@ -129,6 +147,7 @@ DistributedRun::DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamic
     : comm_(comm), scene_(scene), options_(options), descs_size_(descs.size()) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &ranks_);
+  if (scene_.output.vtk && scene_.output.vtk_pieces) options_.vtk_piece_writers = ranks_;  // a piece each
   world.set_threads(options_.threads);
   dt_ = scene::time_step(scene_, world);
   reference_speed_ = scene::reference_speed(scene_);
@@ -161,6 +180,31 @@ DistributedRun::DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamic
 }
 
 DistributedRun::~DistributedRun() = default;
+
+void DistributedRun::stop_unstable(run::BasicRunOutputs<dynamics::World>* outputs, std::string unstable) {
+  unstable = first_message(comm_, rank_, ranks_, unstable);  // the lowest rank that found the step unstable says why
+  try {                                                      // and the state goes to checkpoints/
+    gather();
+    if (rank_ == 0) unstable += outputs->save_unstable(*whole_);
+  } catch (const PeerStopped&) {
+  } catch (const std::exception& e) {  // a state one World refuses (not finite): as when a save fails
+    unstable += std::string(" (the state could not be saved: ") + e.what() + ")";
+  }
+  throw run::InstabilityError(unstable);
+}
+
+void DistributedRun::write_pieces(run::BasicRunOutputs<dynamics::World>* outputs, int frame) {
+  on_root_agreed(comm_, rank_, [&] { outputs->begin_vtk_pieces(*whole_); });
+  std::string failed;
+  try {
+    io::write_vtk_piece(output_path_, ice_->local(), frame, rank_, scene_.output.contacts,
+                        scene_.world.drift.water_density);
+  } catch (const std::exception& e) {
+    failed = "rank " + std::to_string(rank_) + ": " + e.what();
+  }
+  failed = first_message(comm_, rank_, ranks_, failed);
+  if (!failed.empty()) throw io::IoError(failed);
+}
 
 void DistributedRun::gather() {
   std::optional<dynamics::WorldState> state;
@@ -197,9 +241,15 @@ run::RunSummary DistributedRun::run() {
   on_root_agreed(comm_, rank_, [&] {
     outputs = std::make_unique<run::BasicRunOutputs<dynamics::World>>(scene_, *whole_, options_, dt_, signature_,
                                                                       grid_geometry_, restart_, restart_results_);
-    outputs->start(*whole_, restart_);  // a fresh run: the first frame from the whole ice, forces at t = 0
     progress = std::make_unique<io::Progress>(scene_.time.duration, options_.interactive, stderr, first_step);
   });
+  output_path_ = broadcast(comm_, 0, rank_ == 0 ? outputs->path().string() : std::string());
+  if (!restart_) {  // the forces at t = 0 (what the first step would evaluate), and the first frame's pieces
+    ice_->compute_forces();
+    if (options_.vtk_piece_writers > 0) write_pieces(outputs.get(), 0);
+  }
+  // a fresh run: the first frame from the whole ice, forces at t = 0
+  on_root_agreed(comm_, rank_, [&] { outputs->start(*whole_, restart_); });
 
   // Each step: rank 0 says the step to take (its outputs' schedule), every rank steps its share, the ranks agree
   // on the guard's verdict and on whether the outputs read the ice after it, which is then gathered for them.
@@ -228,24 +278,13 @@ run::RunSummary DistributedRun::run() {
     } catch (const run::InstabilityError& e) {
       unstable = e.what();
     }
-    int mine[2] = {unstable.empty() ? 0 : 1, rank_ == 0 && outputs->wants_world(local().time()) ? 1 : 0}, all[2];
-    MPI_Allreduce(mine, all, 2, MPI_INT, MPI_MAX, comm_);
-    if (all[0]) {  // the lowest rank that found the step unstable says why; the state goes to checkpoints/
-      int who = unstable.empty() ? ranks_ : rank_, first = 0;
-      MPI_Allreduce(&who, &first, 1, MPI_INT, MPI_MIN, comm_);
-      int length = static_cast<int>(unstable.size());
-      MPI_Bcast(&length, 1, MPI_INT, first, comm_);
-      unstable.resize(static_cast<std::size_t>(length));
-      MPI_Bcast(unstable.data(), length, MPI_CHAR, first, comm_);
-      try {
-        gather();
-        if (rank_ == 0) unstable += outputs->save_unstable(*whole_);
-      } catch (const PeerStopped&) {
-      } catch (const std::exception& e) {  // a state one World refuses (not finite): as when a save fails
-        unstable += std::string(" (the state could not be saved: ") + e.what() + ")";
-      }
-      throw run::InstabilityError(unstable);
-    }
+    // (the third: 1 + the VTK frame due in pieces, if one is)
+    int mine[3] = {unstable.empty() ? 0 : 1, rank_ == 0 && outputs->wants_world(local().time()) ? 1 : 0,
+                   rank_ == 0 ? outputs->vtk_pieces_due(local().time()) + 1 : 0},
+        all[3];
+    MPI_Allreduce(mine, all, 3, MPI_INT, MPI_MAX, comm_);
+    if (all[0]) stop_unstable(outputs.get(), unstable);
+    if (all[2] > 0) write_pieces(outputs.get(), all[2] - 1);
     if (!all[1]) continue;
     gather();
     on_root_agreed(comm_, rank_, [&] { outputs->after_step(*whole_); });

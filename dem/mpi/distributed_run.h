@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "domain/distributed_world.h"
@@ -22,6 +23,11 @@
 #include "run/checkpoint.h"
 #include "run/simulation.h"
 #include "scene/scene.h"
+
+namespace polyfloe::run {
+template <class W>
+class BasicRunOutputs;
+}
 
 namespace polyfloe::mpi {
 
@@ -78,6 +84,13 @@ class DistributedRun {
  private:
   // Rank 0's mirror: the whole ice at the time of the ranks' World, gathered (collective).
   void gather();
+  // Collective (output.vtk_pieces): frame `frame`'s VTK pieces, each rank's its own, listed first by rank 0's
+  // `outputs`. Throws io::IoError on every rank where one rank could not write its piece (the first such rank's
+  // message), PeerStopped on the others where rank 0 could not list them.
+  void write_pieces(run::BasicRunOutputs<dynamics::World>* outputs, int frame);
+  // Collective, where some rank found the step unstable (`unstable`: this rank's finding, or empty): throws
+  // run::InstabilityError on every rank with the lowest such rank's message, the state saved where it can be.
+  [[noreturn]] void stop_unstable(run::BasicRunOutputs<dynamics::World>* outputs, std::string unstable);
 
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
@@ -91,6 +104,7 @@ class DistributedRun {
   std::optional<run::Checkpoint> restart_;
   std::filesystem::path restart_results_;
   std::optional<io::ImageGrid> grid_geometry_;
+  std::filesystem::path output_path_;  // rank 0's output folder, on every rank (VTK pieces)
 };
 
 }  // namespace polyfloe::mpi

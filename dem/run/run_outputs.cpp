@@ -69,7 +69,9 @@ BasicRunOutputs<W>::BasicRunOutputs(const scene::Scene& scene, const W& world, c
   const double rho_w = scene_.world.drift.water_density;
   std::vector<io::ExtraSeries> extra;
   if constexpr (kPlanar) {
-    if (scene_.output.vtk) vtk_ = std::make_unique<VtkWriter>(out, scene_.output.contacts, rho_w, &manifest);
+    if (scene_.output.vtk)
+      vtk_ = std::make_unique<VtkWriter>(out, scene_.output.contacts, rho_w, &manifest,
+                                         scene_.output.vtk_pieces ? std::max(1, options_.vtk_piece_writers) : 0);
     if (scene_.channel) {
       channel_.emplace(*scene_.channel, world);
       extra = channel_series();
@@ -159,6 +161,11 @@ void BasicRunOutputs<W>::write_frame(const W& world) {
       extra_values_ = {c.area_flux,         c.area_passed,       c.upstream_area,
                        c.funnel_area,       c.funnel_mean_speed, static_cast<double>(c.strait_floes),
                        c.strait_mean_speed, c.jammed ? 1.0 : 0.0};
+    }
+    if (vtk_ && vtk_->pieces() > 0 && options_.vtk_piece_writers == 0) {  // one process: its one piece
+      begin_vtk_pieces(world);
+      io::write_vtk_piece(folder_.path(), world, vtk_->frames(), 0, scene_.output.contacts,
+                          scene_.world.drift.water_density);
     }
     if (vtk_) vtk_->write_frame(world);
     if (velocity_grid_) velocity_grid_->write_frame(world);

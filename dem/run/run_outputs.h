@@ -52,6 +52,17 @@ class BasicRunOutputs {
       if (velocity_grid_ && velocity_grid_->due(t)) return true;
     return schedule_.frame_due(t);
   }
+  // VTK frames in pieces (output.vtk_pieces, planar): the frame after_step() at time t [s] writes, where it is
+  // written in pieces and due, else -1; and, before the pieces of the next frame are written, their manifest entries
+  // and folders (io::VtkSeriesWriter::begin_pieces).
+  int vtk_pieces_due(double t) const {
+    if constexpr (kPlanar)
+      if (vtk_ && vtk_->pieces() > 0 && schedule_.frame_due(t)) return vtk_->frames();
+    return -1;
+  }
+  void begin_vtk_pieces(const W& world) {
+    if constexpr (kPlanar) vtk_->begin_pieces(world.bonds() != nullptr);
+  }
   // An unstable run's state in DIR/checkpoints/unstable.h5 (when checkpoints are on): what to tell the user.
   std::string save_unstable(const W& world);
   // results.xmf at the end.

@@ -142,7 +142,8 @@ std::filesystem::path check_restart_outputs(const scene::Scene& scene_, const Ch
   }
   if (scene_.output.vtk) {
     char name[40];
-    std::snprintf(name, sizeof name, planar ? "floes/floes_%06d.vtp" : "bodies/bodies_%06d.vtp", frames - 1);
+    std::snprintf(name, sizeof name, planar ? "floes/floes_%06d.%s" : "bodies/bodies_%06d.%s", frames - 1,
+                  scene_.output.vtk_pieces ? "pvtp" : "vtp");  // (in pieces: their list)
     if (!fs::exists(dir / name, ec))
       throw CheckpointError(where + "the interrupted run's frame " + (dir / name).string() + " is missing");
   }

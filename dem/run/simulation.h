@@ -28,6 +28,9 @@ struct RunOptions {
   bool interactive = false;          // stderr is a terminal: redraw a progress line
   bool profile = false;              // print where the time went at the end
   std::string version;               // code version stored in the outputs
+  // output.vtk_pieces under mpirun: the ranks, each writing its own piece of every VTK frame (io::write_vtk_piece)
+  // before the outputs list the pieces; 0: one process, whose outputs write its one piece themselves.
+  int vtk_piece_writers = 0;
 };
 
 // The interrupted run's results.h5 is moved here while a restart copies its frames into a new one (kept if the

@@ -60,7 +60,11 @@ struct OutputSettings {
   double interval = 5.0;  // simulated time between frames [s], > 0
   bool vtk = true;        // VTK .vtp frames + .pvd series
   bool contacts = true;   // contact series (.vtp + .pvd) alongside the floes
-  bool hdf5 = true;       // results.h5
+  // Each VTK frame as a .pvtp listing pieces (ParaView's parallel convention), one per MPI rank: the floes it owns,
+  // the contacts it evaluated, the bonded faces of its elements, each piece written by its rank; one process writes
+  // one piece. Planar scenes. false: one .vtp per frame, gathered (the same files on any number of ranks).
+  bool vtk_pieces = false;
+  bool hdf5 = true;  // results.h5
   VelocityGridSettings velocity_grid;
   CheckpointSettings checkpoint;
 };

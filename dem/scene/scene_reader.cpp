@@ -49,6 +49,7 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
                               : s.channel                      ? "channel"
                               : has_forcing                    ? "forcing"
                               : s.output.velocity_grid.enabled ? "output.velocity_grid"
+                              : s.output.vtk_pieces            ? "output.vtk_pieces"
                                                                : nullptr;
     if (planar_only)
       throw SceneError(s.spatial->source.where +

@@ -88,6 +88,7 @@ void output_keys(V& v, OutputSettings& o) {
   v.number("interval", o.interval, positive("s"), "simulated time between frames");
   v.boolean("vtk", o.vtk, "");
   v.boolean("contacts", o.contacts, "");
+  v.boolean("vtk_pieces", o.vtk_pieces, "one piece per MPI rank");
   v.boolean("hdf5", o.hdf5, "");
   v.block("velocity_grid", [&](V& g) { velocity_grid_keys(g, o.velocity_grid); });
   v.block("checkpoint", [&](V& c) {

@@ -24,6 +24,7 @@ the restarts), the field file at 2 ranks. Exit 0 when every check holds; each fa
 """
 import argparse
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -34,6 +35,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import compare_outputs  # noqa: E402
+import compare_vtk_content  # noqa: E402
 
 MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_WAIT_POLICY=passive"]
 SCENES = {  # name: (scene, the --set options that keep it to a few seconds)
@@ -157,26 +159,86 @@ def session_members(sid):
     return out
 
 
+VTK_SERIES = ("floes", "contacts", "bonds")
+
+
+def vtk_file(difference):
+    """Whether a difference compare_outputs reports is about a VTK series (its .pvd or its frames)."""
+    path = difference.split(":", 1)[0]
+    return any(path == s + ".pvd" or path.startswith(s + "/") for s in VTK_SERIES)
+
+
+def pieces_check(folder, ranks=None):
+    """Problems with a folder written in pieces: a frame whose .pvtp does not list `ranks` pieces (where given), or
+    a piece file on disk that no .pvtp lists (left over)."""
+    problems = []
+    for series in VTK_SERIES:
+        d = os.path.join(folder, series)
+        if not os.path.isdir(d):
+            continue
+        listed = set()
+        for name in sorted(os.listdir(d)):
+            if name.endswith(".pvtp"):
+                with open(os.path.join(d, name)) as f:
+                    sources = re.findall(r'<Piece Source="([^"]*)"', f.read())
+                frame = int(name[len(series) + 1:-len(".pvtp")])
+                if ranks is not None and len(sources) != ranks:
+                    problems.append(f"{series}/{name} (frame {frame}) lists {len(sources)} pieces, not {ranks}")
+                listed.update(sources)
+        stray = [n for n in os.listdir(d) if n.endswith(".vtp") and n not in listed]
+        if stray:
+            problems.append(f"{series}/: pieces no .pvtp lists: {sorted(stray)[:3]}")
+    return problems
+
+
+def pieces(polyfloe, work, env, quick):
+    """output.vtk_pieces: one piece per rank, by content the frames of the gathered one-process run."""
+    layouts = [(3, 1)] if quick else [(0, 1), (1, 1), (2, 1), (3, 2), (4, 1)]
+    for name in ("channel", "breaking_sheet"):
+        scene, sets = SCENES[name]
+        ref = os.path.join(work, name + "_one")  # (the matrix's)
+        for ranks, threads in layouts:
+            out = os.path.join(work, f"{name}_pieces_{ranks}x{threads}")
+            where = f"{name} in pieces: " + (f"{ranks} ranks x {threads} threads" if ranks else "one process")
+            r = run(command(polyfloe, scene, out, sets + ["output.vtk_pieces=true"], ranks, threads), env)
+            if r.returncode != 0:
+                fail(f"{where}: exit {r.returncode}: {r.stderr[-2000:]}")
+                continue
+            d = compare_vtk_content.compare(ref, out) + pieces_check(out, max(ranks, 1))
+            d += [x for x in differences(ref, out, ignore=("scene.resolved.yaml", "results.h5",
+                                                             "checkpoints/results.h5", ".polyfloe-manifest"))
+                  if not vtk_file(x) and not x.startswith("checkpoints/checkpoint_")]
+            if d:
+                fail(f"{where}: " + "; ".join(d[:5]))
+            print(f"{where}: {'same content' if not d else 'DIFFERENT'}", flush=True)
+            shutil.rmtree(out)
+
+
 def restart_across_rank_counts(polyfloe, work, env, name, extra_sets):
     scene, sets = SCENES[name][0], SCENES[name][1] + extra_sets
-    ref = os.path.join(work, name + "_restart_ref")
+    in_pieces = "output.vtk_pieces=true" in extra_sets
+    name_dir = name + ("_pieces" if in_pieces else "")
+    ref = os.path.join(work, name_dir + "_restart_ref")
     r = run(command(polyfloe, scene, ref, sets), env)
     if r.returncode != 0:
-        return fail(f"restart of {name}: the uninterrupted run: exit {r.returncode}: {r.stderr[-2000:]}")
-    out = os.path.join(work, name + "_restart")
+        return fail(f"restart of {name_dir}: the uninterrupted run: exit {r.returncode}: {r.stderr[-2000:]}")
+    out = os.path.join(work, name_dir + "_restart")
     if not killed_after(command(polyfloe, scene, out, sets, 2), env, out, 2):
-        return fail(f"restart of {name}: the 2-rank run ended before it could be killed")
+        return fail(f"restart of {name_dir}: the 2-rank run ended before it could be killed")
     if not killed_after(command(polyfloe, scene, out, sets, 3, extra=["--restart", out]), env, out, 1):
-        return fail(f"restart of {name}: the 3-rank restart ended before it could be killed")
+        return fail(f"restart of {name_dir}: the 3-rank restart ended before it could be killed")
     r = run(command(polyfloe, scene, out, sets, extra=["--restart", out]), env)
     if r.returncode != 0 or "restarting from" not in r.stderr:
-        return fail(f"restart of {name}: one process from the 3-rank checkpoint: exit {r.returncode}: {r.stderr[-2000:]}")
+        return fail(f"restart of {name_dir}: one process from the 3-rank checkpoint: exit {r.returncode}: {r.stderr[-2000:]}")
     d = differences(ref, out, ignore=(".polyfloe-manifest",))
+    if in_pieces:  # frames cut into 1, 2 or 3 pieces: their content compared
+        d = [x for x in d if not vtk_file(x)] + compare_vtk_content.compare(ref, out)
+        d += pieces_check(out)
     if d:
-        fail(f"restart of {name}: 2 ranks, killed, 3 ranks, killed, one process: differs from the uninterrupted "
+        fail(f"restart of {name_dir}: 2 ranks, killed, 3 ranks, killed, one process: differs from the uninterrupted "
              "run: " + "; ".join(d[:5]))
     else:
-        print(f"restart of {name}: 2 ranks -> SIGKILL -> 3 ranks -> SIGKILL -> one process: same as uninterrupted",
+        print(f"restart of {name_dir}: 2 ranks -> SIGKILL -> 3 ranks -> SIGKILL -> one process: same as uninterrupted",
               flush=True)
 
 
@@ -303,6 +365,9 @@ def main():
         matrix(polyfloe, work, env, a.quick)
         restart_across_rank_counts(polyfloe, work, env, "channel", ["run.duration=5"])
         restart_across_rank_counts(polyfloe, work, env, "breaking_sheet", ["output.checkpoint.every=2"])
+        pieces(polyfloe, work, env, a.quick)
+        restart_across_rank_counts(polyfloe, work, env, "breaking_sheet",
+                                   ["output.checkpoint.every=2", "output.vtk_pieces=true"])
         field_file_runs(polyfloe, work, env, a.quick)
         unstable(polyfloe, work, env)
         refusals(polyfloe, work, env)

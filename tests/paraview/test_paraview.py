@@ -1,9 +1,10 @@
 #!/usr/bin/python3
-"""ParaView as the client, end to end: small runs of the channel scene (twice, into two folders) and of the frozen
-sheet's uniaxial compression, each picture script of postprocess/paraview/ rendered by ParaView's own pvbatch
-(scripts/pvbatch.sh, on a virtual display), each picture checked by its pixels (not blank: coloured floes, arrows,
-cracks), each state file loaded by pvbatch against the other folder and checked to draw the same picture, the
-first frame's arrays as ParaView reads them, frame times on the interval's multiples, and an animation.
+"""ParaView as the client, end to end: small runs of the channel scene (twice, into two folders: once in one
+process, once on 2 MPI ranks with its VTK frames in per-rank pieces) and of the frozen sheet's uniaxial
+compression, each picture script of postprocess/paraview/ rendered by ParaView's own pvbatch (scripts/pvbatch.sh, on
+a virtual display), each picture checked by its pixels (not blank: coloured floes, arrows, cracks), each state file
+loaded by pvbatch against the other folder (the pieces) and checked to draw the same picture, the first frame's
+arrays as ParaView reads them, frame times on the interval's multiples, and an animation.
 
     /usr/bin/python3 tests/paraview/test_paraview.py --build build [--keep]
 
@@ -62,7 +63,13 @@ def main():
         channel = ["run", "dem/scenes/channel.yaml", "--set", "run.duration=20", "--set", "output.interval=2.5",
                    "--threads", "1"]
         run([polyfloe, *channel, "-o", f"{work}/a"], "the channel run")
-        run([polyfloe, *channel, "-o", f"{work}/b"], "the channel run again")
+        # Again on 2 MPI ranks, its VTK frames in pieces (a .pvtp per frame listing each rank's piece): ParaView
+        # reads them as the single files of the first run.
+        run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_WAIT_POLICY=passive", "-np", "2",
+             polyfloe, *channel, "--set", "output.vtk_pieces=true", "-o", f"{work}/b"],
+            "the channel run again, on 2 ranks in pieces")
+        check(os.path.isfile(f"{work}/b/floes/floes_000001_1.vtp") and 'floes/floes_000001.pvtp"' in
+              open(f"{work}/b/floes.pvd").read(), "the 2-rank run's floes.pvd lists .pvtp frames of 2 pieces")
         run([polyfloe, "run", "dem/scenes/uniaxial_compression.yaml", "--set", "run.duration=1.1", "--set",
              "output.interval=0.1", "-o", f"{work}/sheet"], "the uniaxial compression run")
 
@@ -121,7 +128,8 @@ def main():
         pvbatch("cracks.py", f"{work}/sheet", "-o", pics)
         image(f"{pics}/cracks.png", "--coloured", "0.003")
 
-        # Each state file on a fresh results folder (the same scene run again elsewhere) draws the same picture.
+        # Each state file on a fresh results folder (the same scene run again elsewhere: the channel on 2 ranks, in
+        # pieces) draws the same picture.
         for name, data in (("channel", f"{work}/b"), ("contacts", f"{work}/b"), ("cracks", f"{work}/sheet")):
             pvbatch("render_state.py", f"{pics}/{name}.pvsm", data, "-o", f"{pics}/{name}_state.png")
             image(f"{pics}/{name}_state.png", "--same-as", f"{pics}/{name}.png")
