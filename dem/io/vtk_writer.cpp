@@ -72,7 +72,7 @@ void add_bond_stress(vtkPolyData& data, const dynamics::World& world, const bond
   const int bodies = static_cast<int>(world.size());
   std::vector<double> sigma(static_cast<std::size_t>(bodies), 0.0), tau(sigma.size(), 0.0), count(sigma.size(), 0.0);
   const auto per = static_cast<std::size_t>(b.material().points_per_face);
-  for (std::size_t f = 0; f < b.faces(); ++f) {
+  for (std::size_t f = 0; f < b.faces() && !shown.empty(); ++f) {  // (none shown: a .pvtp's arrays only)
     for (std::size_t p = b.face_first_point(f); p < b.face_first_point(f) + per; ++p) {
       if (!b.point_intact(p)) continue;
       for (int e : {b.face_a(f), b.face_b(f)}) {
