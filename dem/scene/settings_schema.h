@@ -95,6 +95,13 @@ void output_keys(V& v, OutputSettings& o) {
     c.integer("every", o.checkpoint.every, 0, 100000, "[frames] 0 = no checkpoints");
     c.integer("keep", o.checkpoint.keep, 1, 1000, "newest checkpoints kept");
   });
+  v.after([&o](MapReader& m) {  // pieces of frames that are not written: refused, not ignored
+    if (!o.vtk_pieces || o.vtk) return;
+    const auto f = m.take("vtk_pieces");
+    m.context().fail(f ? *f : m.self(),
+                     "output.vtk_pieces is true but output.vtk is false: no VTK frames are written to cut into "
+                     "pieces; set output.vtk: true, or remove output.vtk_pieces");
+  });
 }
 
 template <class V>
