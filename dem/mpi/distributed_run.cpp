@@ -168,6 +168,9 @@ DistributedRun::DistributedRun(MPI_Comm comm, const scene::Scene& scene, dynamic
     signature_ = run::body_signature(world);
     whole_.emplace(std::move(world));
   }
+  double mass = rank_ == 0 ? whole_->dynamic_mass() : 0.0;
+  MPI_Bcast(&mass, 1, MPI_DOUBLE, 0, comm_);
+  energy_limit_ = run::runaway_energy_limit(mass, reference_speed_);
   on_root_agreed(comm_, rank_, [&] {
     if (restart)
       restart_results_ = run::take_checkpoint(scene_, *whole_, *restart, restart_file, options_.output_dir,
@@ -191,6 +194,27 @@ void DistributedRun::stop_unstable(run::BasicRunOutputs<dynamics::World>* output
     unstable += std::string(" (the state could not be saved: ") + e.what() + ")";
   }
   throw run::InstabilityError(unstable);
+}
+
+double DistributedRun::ice_energy(double mine) const {
+  std::vector<double> shares(static_cast<std::size_t>(ranks_));
+  MPI_Allgather(&mine, 1, MPI_DOUBLE, shares.data(), 1, MPI_DOUBLE, comm_);
+  double energy = 0.0;
+  for (const double e : shares) energy += e;
+  return energy;
+}
+
+std::string DistributedRun::runaway_energy(double energy) const {
+  struct Worst {
+    double energy;
+    dynamics::BodyId id;
+  };
+  const auto [e, id] = run::most_energetic(ice_->local());
+  const std::vector<std::vector<Worst>> all = domain::all_gather(comm_, std::vector<Worst>{{e, id}});
+  Worst worst{-1.0, 0};
+  for (const std::vector<Worst>& w : all)
+    if (w[0].energy > worst.energy || (w[0].energy == worst.energy && w[0].id < worst.id)) worst = w[0];
+  return run::runaway_energy(ice_->local(), energy, energy_limit_, worst.id, worst.energy, dt_);
 }
 
 void DistributedRun::write_pieces(run::BasicRunOutputs<dynamics::World>* outputs, int frame) {
@@ -272,18 +296,17 @@ run::RunSummary DistributedRun::run() {
     } catch (const std::exception& e) {
       abort_alone(comm_, rank_, e);
     }
-    std::string unstable;
-    try {
-      run::check_stability(local(), local().report(), dt_, reference_speed_);
-    } catch (const run::InstabilityError& e) {
-      unstable = e.what();
-    }
+    // The run guard's checks, in one process's order: each rank's share, and the ice's energy as a whole.
+    const run::ShareCheck check = run::check_share(local(), local().report(), dt_, reference_speed_);
+    const double energy = ice_energy(check.energy);
     // (the third: 1 + the VTK frame due in pieces, if one is)
-    int mine[3] = {unstable.empty() ? 0 : 1, rank_ == 0 && outputs->wants_world(local().time()) ? 1 : 0,
-                   rank_ == 0 ? outputs->vtk_pieces_due(local().time()) + 1 : 0},
-        all[3];
-    MPI_Allreduce(mine, all, 3, MPI_INT, MPI_MAX, comm_);
-    if (all[0]) stop_unstable(outputs.get(), unstable);
+    int mine[4] = {check.motion.empty() ? 0 : 1, rank_ == 0 && outputs->wants_world(local().time()) ? 1 : 0,
+                   rank_ == 0 ? outputs->vtk_pieces_due(local().time()) + 1 : 0, check.overlap.empty() ? 0 : 1},
+        all[4];
+    MPI_Allreduce(mine, all, 4, MPI_INT, MPI_MAX, comm_);
+    if (all[0]) stop_unstable(outputs.get(), check.motion);
+    if (energy > energy_limit_) stop_unstable(outputs.get(), runaway_energy(energy));
+    if (all[3]) stop_unstable(outputs.get(), check.overlap);
     if (all[2] > 0) write_pieces(outputs.get(), all[2] - 1);
     if (!all[1]) continue;
     gather();

@@ -91,6 +91,12 @@ class DistributedRun {
   // Collective, where some rank found the step unstable (`unstable`: this rank's finding, or empty): throws
   // run::InstabilityError on every rank with the lowest such rank's message, the state saved where it can be.
   [[noreturn]] void stop_unstable(run::BasicRunOutputs<dynamics::World>* outputs, std::string unstable);
+  // Collective: the ice's kinetic energy [J], every rank's share (`mine`) summed in rank order (the same bits on
+  // every rank).
+  double ice_energy(double mine) const;
+  // Collective, where the ice's energy passed energy_limit_: run::runaway_energy's message, naming the most
+  // energetic floe of every rank's (the lowest id of equals), the same on every rank.
+  std::string runaway_energy(double energy) const;
 
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
@@ -98,6 +104,9 @@ class DistributedRun {
   run::RunOptions options_;
   std::size_t descs_size_ = 0;
   double dt_ = 0.0, reference_speed_ = 0.0;  // [s], [m/s]
+  // The run guard's limit on the whole ice's kinetic energy [J], from its dynamic mass summed as one process sums it
+  // (rank 0's whole ice): the guard weighs the ice, not a rank's share of it.
+  double energy_limit_ = 0.0;
   std::string signature_;
   std::optional<dynamics::World> whole_;  // rank 0: the whole ice, brought up to date when the outputs read it
   std::unique_ptr<domain::DistributedWorld> ice_;

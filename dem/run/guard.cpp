@@ -71,6 +71,83 @@ void check_contact_resolution(const W& w, const dynamics::StepReport& report, do
   throw InstabilityError(why.str());
 }
 
+namespace {
+
+// What every runaway message ends with: when, and what to change.
+template <class W>
+std::string advice(const W& w, double dt) {
+  std::ostringstream why;
+  why << " at t = " << w.time() << " s (step " << w.step_count() << "). The time step dt = " << dt
+      << " s is probably too large for the contact stiffness: set run.dt to " << 0.25 * dt
+      << " or raise run.steps_per_contact (e.g. x4), or lower ice.youngs_modulus.";
+  return why.str();
+}
+
+template <class W>
+bool ghost(const W& w, int i) {
+  if constexpr (std::is_same_v<W, dynamics::World>) return w.is_ghost(i);
+  return false;
+}
+
+// The first body in id order (ghosts left out: their owners') with a non-finite state or a speed over the limit,
+// named; empty where there is none.
+template <class W>
+std::string check_bodies(const W& w, double speed_limit, double dt) {
+  for (const int i : w.id_order()) {
+    if (ghost(w, i)) continue;
+    const BodyMotion m = body_motion(w, i);
+    std::ostringstream why;
+    if (!m.finite)
+      why << "body " << w.id(i) << " has a non-finite state (NaN or Inf)";
+    else if (m.dynamic && m.speed > speed_limit)
+      why << "body " << w.id(i) << " moves at " << m.speed << " m/s (limit " << speed_limit
+          << " m/s = max(50, 20 x reference speed))";
+    else
+      continue;
+    return why.str() + advice(w, dt);
+  }
+  return {};
+}
+
+// The kinetic energy of the dynamic bodies (ghosts left out) summed in id order [J], and the most energetic (the
+// first in id order of equals; worst = -1 where there is none).
+struct EnergyScan {
+  double total = 0.0, worst = -1.0;
+  int worst_body = -1;
+};
+template <class W>
+EnergyScan scan_energy(const W& w) {
+  EnergyScan e;
+  for (const int i : w.id_order()) {
+    if (ghost(w, i)) continue;
+    const BodyMotion m = body_motion(w, i);
+    if (!m.dynamic || !m.finite) continue;
+    e.total += m.energy;
+    if (m.energy > e.worst) {
+      e.worst = m.energy;
+      e.worst_body = i;
+    }
+  }
+  return e;
+}
+
+template <class W>
+std::string runaway_energy_message(const W& w, double energy, double limit, dynamics::BodyId worst, double worst_energy,
+                                   double dt) {
+  std::ostringstream why;
+  why << "the kinetic energy of the ice, " << energy << " J, exceeds " << limit
+      << " J (every floe at 10 x the reference speed; the most energetic is body " << worst << " with " << worst_energy
+      << " J): runaway energy";
+  return why.str() + advice(w, dt);
+}
+
+}  // namespace
+
+double runaway_energy_limit(double mass, double reference_speed) {
+  const double ref = std::max(1.0, reference_speed);
+  return 0.5 * mass * 100.0 * ref * ref;
+}
+
 template <class W>
 void check_stability(const W& w, const dynamics::StepReport& r, double dt, double reference_speed) {
   check_contact_resolution(w, r, dt);
@@ -79,9 +156,8 @@ void check_stability(const W& w, const dynamics::StepReport& r, double dt, doubl
   // resolution checks stop a step too large for the speeds reached.)
   double speed_limit = contact::kInfinite, energy_limit = contact::kInfinite;
   if constexpr (std::is_same_v<W, dynamics::World>) {
-    const double ref = std::max(1.0, reference_speed);
     speed_limit = std::max(50.0, 20.0 * reference_speed);
-    energy_limit = 0.5 * w.dynamic_mass() * 100.0 * ref * ref;
+    energy_limit = runaway_energy_limit(w.dynamic_mass(), reference_speed);
   }
   // The report's summary of the step clears the bodies at once; only a state it cannot clear is searched body by
   // body below, for the body to name (and decides by itself).
@@ -90,42 +166,43 @@ void check_stability(const W& w, const dynamics::StepReport& r, double dt, doubl
     check_deepest_overlap(w, r.deepest, dt);
     return;
   }
-  std::ostringstream why;
-  auto advice = [&] {
-    why << " at t = " << w.time() << " s (step " << w.step_count() << "). The time step dt = " << dt
-        << " s is probably too large for the contact stiffness: set run.dt to " << 0.25 * dt
-        << " or raise run.steps_per_contact (e.g. x4), or lower ice.youngs_modulus.";
-    throw InstabilityError(why.str());
-  };
+  if (std::string why = check_bodies(w, speed_limit, dt); !why.empty()) throw InstabilityError(why);
   // Runaway energy: the kinetic energy of the dynamic bodies beyond what they would have all moving at 10 x the
   // reference speed (an instability that grows in many bodies at once, before any one reaches the speed limit).
-  double energy = 0.0, worst = 0.0;
-  int worst_body = 0;
-  for (const int i : w.id_order()) {
-    const BodyMotion m = body_motion(w, i);
-    if (!m.finite) {
-      why << "body " << w.id(i) << " has a non-finite state (NaN or Inf)";
-      advice();
-    }
-    if (!m.dynamic) continue;
-    if (m.speed > speed_limit) {
-      why << "body " << w.id(i) << " moves at " << m.speed << " m/s (limit " << speed_limit
-          << " m/s = max(50, 20 x reference speed))";
-      advice();
-    }
-    energy += m.energy;
-    if (m.energy > worst) {
-      worst = m.energy;
-      worst_body = i;
-    }
-  }
-  if (energy > energy_limit) {
-    why << "the kinetic energy of the ice, " << energy << " J, exceeds " << energy_limit
-        << " J (every floe at 10 x the reference speed; the most energetic is body " << w.id(worst_body) << " with "
-        << worst << " J): runaway energy";
-    advice();
-  }
+  if (const EnergyScan e = scan_energy(w); e.total > energy_limit)
+    throw InstabilityError(
+        runaway_energy_message(w, e.total, energy_limit, w.id(std::max(e.worst_body, 0)), std::max(e.worst, 0.0), dt));
   check_deepest_overlap(w, r.deepest, dt);
+}
+
+ShareCheck check_share(const dynamics::World& w, const dynamics::StepReport& r, double dt, double reference_speed) {
+  ShareCheck c;
+  c.energy = r.motion.energy;  // (the share's: the report leaves the ghosts to their owners)
+  try {
+    check_contact_resolution(w, r, dt);
+    const dynamics::MotionSummary& s = r.motion;
+    const double speed_limit = std::max(50.0, 20.0 * reference_speed);
+    if (!s.all_finite || std::sqrt(s.max_speed2) + s.max_spin_speed > speed_limit)
+      c.motion = check_bodies(w, speed_limit, dt);
+  } catch (const InstabilityError& e) {
+    c.motion = e.what();
+  }
+  try {
+    check_deepest_overlap(w, r.deepest, dt);
+  } catch (const InstabilityError& e) {
+    c.overlap = e.what();
+  }
+  return c;
+}
+
+std::pair<double, dynamics::BodyId> most_energetic(const dynamics::World& w) {
+  const EnergyScan e = scan_energy(w);
+  return e.worst_body < 0 ? std::pair<double, dynamics::BodyId>{-1.0, 0} : std::pair{e.worst, w.id(e.worst_body)};
+}
+
+std::string runaway_energy(const dynamics::World& w, double energy, double limit, dynamics::BodyId worst,
+                           double worst_energy, double dt) {
+  return runaway_energy_message(w, energy, limit, worst, worst_energy, dt);
 }
 
 template void check_contact_resolution(const dynamics::World&, const dynamics::StepReport&, double);

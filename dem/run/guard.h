@@ -5,6 +5,8 @@
 #pragma once
 
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "dynamics/spatial_world.h"
 #include "dynamics/step_report.h"
@@ -29,5 +31,26 @@ void check_stability(const W& world, const dynamics::StepReport& r, double dt, d
 // Its first check alone (O(1)).
 template <class W>
 void check_contact_resolution(const W& world, const dynamics::StepReport& r, double dt);
+
+// The same checks where `world` holds a share of a planar ice (an MPI rank's World: its ghosts are their owners'),
+// kept apart so that the ranks reach the verdict one process would. One process checks, in this order: the
+// contact resolution and each body (`motion`: the first failing check's message, else empty), the ice's kinetic
+// energy (the share's own, `energy` [J], summed over the ranks against runaway_energy_limit() of the whole ice's
+// dynamic mass, then named by runaway_energy()), the deepest overlap (`overlap`). Throws nothing.
+struct ShareCheck {
+  std::string motion, overlap;
+  double energy = 0.0;  // kinetic energy of the share's dynamic bodies, translation + rotation [J]
+};
+ShareCheck check_share(const dynamics::World& world, const dynamics::StepReport& r, double dt, double reference_speed);
+// The most kinetic energy a planar ice of dynamic mass `mass` [kg] may hold [J]: every dynamic body at 10 x
+// max(1 m/s, reference_speed).
+double runaway_energy_limit(double mass, double reference_speed);
+// The share's most energetic dynamic body (ghosts left out; the lowest id of equals): its kinetic energy [J] and
+// id; {-1, 0} where the share has none.
+std::pair<double, dynamics::BodyId> most_energetic(const dynamics::World& world);
+// The message of a runaway energy: the ice holds `energy` [J] over `limit` [J], its most energetic body `worst`
+// (`worst_energy` [J]); at world's time and step, with what to change for the step `dt` [s].
+std::string runaway_energy(const dynamics::World& world, double energy, double limit, dynamics::BodyId worst,
+                           double worst_energy, double dt);
 
 }  // namespace polyfloe::run

@@ -16,7 +16,9 @@
    ranks, bitwise one process's; the same field cut short so that the ice leaves it: exit 1 and one message from
    the rank that met it (which ends the job).
 4. A run that becomes unstable (two floes at a step far too long) on 2 ranks: exit 3, the message once, its
-   folder (checkpoints/unstable.h5 included) bitwise one process's.
+   folder (checkpoints/unstable.h5 included) bitwise one process's. The guard's kinetic-energy limit is the whole
+   ice's: a fast pair of floes that is one rank's share (tests/mpi/split_energy.yaml) runs on at 2 and 3 ranks as in
+   one process; over the ice's limit, the same stop and message.
 5. What does not run across ranks is refused with exit code 2, one message and no output folder: a spatial scene;
    and bad input is reported once: a bad output folder, a bad --set.
 --quick (the sanitizer build's run): the channel and the breaking sheet at 3 ranks x 1 thread (and at 2 and 3 in
@@ -60,7 +62,8 @@ def fail(what):
 
 
 def command(polyfloe, scene, out, sets, ranks=0, threads=1, extra=()):
-    args = [polyfloe, "run", os.path.join(ROOT, "dem", "scenes", scene + ".yaml"), "-o", out, "--threads",
+    path = scene if scene.endswith(".yaml") else os.path.join(ROOT, "dem", "scenes", scene + ".yaml")
+    args = [polyfloe, "run", path, "-o", out, "--threads",
             str(threads)]
     for s in sets:
         args += ["--set", s]
@@ -332,6 +335,34 @@ def unstable(polyfloe, work, env):
     print("unstable on 2 ranks: exit 3, one message, the folder (unstable.h5 included) as one process's", flush=True)
 
 
+def guard_weighs_the_ice(polyfloe, work, env):
+    """The run guard's kinetic-energy limit is the whole ice's on any number of ranks: a fast pair of floes that
+    is a rank's whole share, over its share's limit but not the ice's, runs on as in one process (bitwise); over
+    the ice's limit it stops the run as one process does, with the same message."""
+    scene = os.path.join(ROOT, "tests", "mpi", "split_energy.yaml")
+    ref = os.path.join(work, "split_energy_one")
+    one = run(command(polyfloe, scene, ref, []), env)
+    if one.returncode != 0:
+        return fail(f"split energy in one process: exit {one.returncode}: {one.stderr[-1500:]}")
+    for ranks in (2, 3):
+        out = os.path.join(work, f"split_energy_{ranks}")
+        r = run(command(polyfloe, scene, out, [], ranks), env)
+        d = differences(ref, out) if r.returncode == 0 else []
+        if r.returncode != 0 or d:
+            fail(f"split energy on {ranks} ranks (72 % of the ice's limit): exit {r.returncode}, not one process's "
+                 f"0: {'; '.join(d[:5]) or r.stderr[-1500:]}")
+        shutil.rmtree(out)
+    fast = ["floes.2.velocity=[16,0]", "floes.3.velocity=[16,0]"]  # 128 % of the ice's limit
+    one = run(command(polyfloe, scene, ref + "_fast", fast), env)
+    r = run(command(polyfloe, scene, os.path.join(work, "split_energy_fast_2"), fast, 2), env)
+    said = [re.findall(r"the kinetic energy of the ice.*runaway energy", x.stderr) for x in (one, r)]
+    if one.returncode != 3 or r.returncode != 3 or not said[0] or said[0] != said[1]:
+        return fail(f"split energy over the ice's limit: exit {r.returncode} on 2 ranks, {one.returncode} in one "
+                    f"process (both should be 3, with one message): {said}")
+    print("the guard weighs the ice: a fast rank's share runs on as in one process; over the ice's limit, the same "
+          "stop and message", flush=True)
+
+
 def refusals(polyfloe, work, env):
     cases = [
         ("cube_plate", [], [], "spatial scene"),
@@ -374,6 +405,7 @@ def main():
                                        ["output.checkpoint.every=2", "output.vtk_pieces=true"])
         field_file_runs(polyfloe, work, env, a.quick)
         unstable(polyfloe, work, env)
+        guard_weighs_the_ice(polyfloe, work, env)
         refusals(polyfloe, work, env)
     finally:
         if not a.work:

@@ -1,7 +1,7 @@
 // The run guard (run/guard.h check_stability), case by case against hand-built states: a non-finite state, a
 // runaway body, runaway energy spread over many bodies (none fast enough for the per-body limit), an overlap deeper
 // than half the smaller floe's radius (the World tracks the deepest in its contact sum), and the messages
-// naming the body, the time and the step to try.
+// naming the body, the time and the step to try; the share of the ice an MPI rank checks.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -71,6 +71,32 @@ TEST(RunGuard, RunawayEnergySpreadOverBodiesBelowTheSpeedLimitNamesTheMostEnerge
   EXPECT_EQ(guard_message(floes(40, {9.0, 0.0}), 1e-3, 1.0), "");
   // The bound scales with the reference speed.
   EXPECT_EQ(guard_message(floes(40, {12.0, 0.0}), 1e-3, 2.0), "");
+}
+
+// A World holding a share of the ice (an MPI rank's): check_share leaves the energy to the ranks' sum, skips the
+// ghosts (their owners check them) and names the first failing body as check_stability does.
+TEST(RunGuard, AShareLeavesTheEnergyToTheIceAndTheGhostsToTheirOwners) {
+  dynamics::World w = floes(4, {12.0, 0.0});  // over the limit of its own mass: a share, not the ice
+  run::ShareCheck c = run::check_share(w, w.report(), 1e-3, 1.0);
+  EXPECT_EQ(c.motion, "");
+  EXPECT_EQ(c.overlap, "");
+  EXPECT_GT(c.energy, run::runaway_energy_limit(w.dynamic_mass(), 1.0));
+  EXPECT_DOUBLE_EQ(run::runaway_energy_limit(2.0, 1.0), 100.0);  // 2 kg, each at 10 m/s
+  EXPECT_DOUBLE_EQ(run::runaway_energy_limit(2.0, 3.0), 900.0);  // ... at 30 m/s
+  w.set_velocity(2, {60.0, 0.0}, 0.0);
+  w.set_velocity(3, {std::numeric_limits<double>::quiet_NaN(), 0.0}, 0.0);
+  EXPECT_NE(run::check_share(w, w.report(), 1e-3, 1.0).motion.find("body 102 moves at 60 m/s"), std::string::npos);
+  w.set_ghost(2, true);  // its owner's to check; the next body is
+  c = run::check_share(w, w.report(), 1e-3, 1.0);
+  EXPECT_NE(c.motion.find("body 103 has a non-finite state"), std::string::npos) << c.motion;
+  // The most energetic of the share: ghosts and non-finite bodies left out, the lowest id of equals.
+  w.set_velocity(3, {12.0, 0.0}, 0.0);
+  const auto [e, id] = run::most_energetic(w);
+  EXPECT_EQ(id, 100u);
+  EXPECT_DOUBLE_EQ(e, 0.5 * w.mass(0) * 144.0);
+  const std::string m = run::runaway_energy(w, 3.0, 2.0, 101, 1.5, 1e-3);
+  EXPECT_NE(m.find("the kinetic energy of the ice, 3 J, exceeds 2 J"), std::string::npos) << m;
+  EXPECT_NE(m.find("the most energetic is body 101 with 1.5 J"), std::string::npos) << m;
 }
 
 TEST(RunGuard, OverlapDeeperThanHalfTheSmallerRadiusNamesThePair) {
