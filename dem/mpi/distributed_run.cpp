@@ -269,7 +269,13 @@ run::RunSummary DistributedRun::run() {
   });
   output_path_ = broadcast(comm_, 0, rank_ == 0 ? outputs->path().string() : std::string());
   if (!restart_) {  // the forces at t = 0 (what the first step would evaluate), and the first frame's pieces
-    ice_->compute_forces();
+    try {
+      ice_->compute_forces();
+    } catch (const domain::CollectiveError&) {
+      throw;
+    } catch (const std::exception& e) {  // (met by one rank alone, e.g. a floe outside a wind field: as in a step)
+      abort_alone(comm_, rank_, e);
+    }
     if (options_.vtk_piece_writers > 0) write_pieces(outputs.get(), 0);
   }
   // a fresh run: the first frame from the whole ice, forces at t = 0

@@ -317,6 +317,23 @@ def field_file_runs(polyfloe, work, env, quick):
              f"{r.stderr[-2000:]}")
     else:
         print("field file: the ice leaving it on 3 ranks: exit 1, one message", flush=True)
+    # A wind field file that ends at x = 150 m: the floes beyond it meet its end at t = 0, in the forces every rank
+    # evaluates before its first step; the ranks that own them report it and end the job (none waits for the rest).
+    write_field(os.path.join(folder, "wind.h5"), 150.0)
+    with open(scene, "w") as f:
+        f.write(FIELD_SCENE.replace("DURATION", "4").replace(
+            "    drag: {enabled: false}", "    field: {type: file, path: wind.h5}"))
+    one = run(args + [os.path.join(work, "wind_short_one")], env)
+    try:
+        r = subprocess.run(MPIRUN + ["-np", "2"] + args + [os.path.join(work, "wind_short")], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True, env=env, timeout=120)
+    except subprocess.TimeoutExpired:
+        return fail("a wind field short of the ice at t = 0, on 2 ranks: still running after 120 s (a rank waits)")
+    if one.returncode != 1 or r.returncode != 1 or "field" not in r.stderr:
+        fail(f"a wind field short of the ice at t = 0: exit {r.returncode} on 2 ranks, {one.returncode} in one "
+             f"process (both should be 1, naming the field): {r.stderr[-1500:]}")
+    else:
+        print("field file: a wind field short of the ice at t = 0 on 2 ranks: exit 1, as one process", flush=True)
 
 
 def unstable(polyfloe, work, env):
