@@ -143,6 +143,9 @@ std::string runaway_energy_message(const W& w, double energy, double limit, dyna
 
 }  // namespace
 
+// The fastest a dynamic body may move [m/s]: max(50, 20 x the reference speed).
+static double runaway_speed_limit(double reference_speed) { return std::max(50.0, 20.0 * reference_speed); }
+
 double runaway_energy_limit(double mass, double reference_speed) {
   const double ref = std::max(1.0, reference_speed);
   return 0.5 * mass * 100.0 * ref * ref;
@@ -156,7 +159,7 @@ void check_stability(const W& w, const dynamics::StepReport& r, double dt, doubl
   // resolution checks stop a step too large for the speeds reached.)
   double speed_limit = contact::kInfinite, energy_limit = contact::kInfinite;
   if constexpr (std::is_same_v<W, dynamics::World>) {
-    speed_limit = std::max(50.0, 20.0 * reference_speed);
+    speed_limit = runaway_speed_limit(reference_speed);
     energy_limit = runaway_energy_limit(w.dynamic_mass(), reference_speed);
   }
   // The report's summary of the step clears the bodies at once; only a state it cannot clear is searched body by
@@ -181,7 +184,7 @@ ShareCheck check_share(const dynamics::World& w, const dynamics::StepReport& r, 
   try {
     check_contact_resolution(w, r, dt);
     const dynamics::MotionSummary& s = r.motion;
-    const double speed_limit = std::max(50.0, 20.0 * reference_speed);
+    const double speed_limit = runaway_speed_limit(reference_speed);
     if (!s.all_finite || std::sqrt(s.max_speed2) + s.max_spin_speed > speed_limit)
       c.motion = check_bodies(w, speed_limit, dt);
   } catch (const InstabilityError& e) {
