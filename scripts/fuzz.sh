@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzes the scene reader and polygon validation / the planar narrow phase with libFuzzer, AddressSanitizer (leak
 # detection on) and UndefinedBehaviorSanitizer: installs clang if missing (scripts/setup.sh fuzz), builds the
-# targets of tests/fuzz into build-fuzz/ (clang, RelWithDebInfo, warnings as errors) and runs each target, the
-# targets side by side when there are cores for it.
+# targets of tests/fuzz into build-fuzz/ (clang, RelWithDebInfo, warnings as errors) and runs each target, as many
+# side by side as there are cores.
 #
 #   bash scripts/fuzz.sh                 # = --smoke: 60 s per target (the CI step)
 #   bash scripts/fuzz.sh --time 600      # 600 s per target
@@ -70,8 +70,9 @@ target_args() {
 }
 
 echo "fuzz: ${targets[*]}, $what each, work directory $WORK"
-# Side by side when there is a core per target, else one after another. Each run records its start and end time.
-parallel=$(( $(nproc) >= ${#targets[@]} ? 1 : 0 ))
+# Side by side, as many at once as there are cores (2 cores: two batches of two). Each run records its start and
+# end time.
+cores=$(nproc)
 declare -A pid rc
 run_one() {
   local t=$1 status=0
@@ -83,16 +84,11 @@ run_one() {
   date +%s.%N >>"$WORK/$t.time"
   return "$status"
 }
-for t in "${targets[@]}"; do
-  if [ "$parallel" = 1 ]; then
-    run_one "$t" & pid[$t]=$!
-  else
-    rc[$t]=0; run_one "$t" || rc[$t]=$?
-  fi
+for ((b = 0; b < ${#targets[@]}; b += cores)); do
+  batch=("${targets[@]:b:cores}")
+  for t in "${batch[@]}"; do run_one "$t" & pid[$t]=$!; done
+  for t in "${batch[@]}"; do rc[$t]=0; wait "${pid[$t]}" || rc[$t]=$?; done
 done
-if [ "$parallel" = 1 ]; then
-  for t in "${targets[@]}"; do rc[$t]=0; wait "${pid[$t]}" || rc[$t]=$?; done
-fi
 
 failed=0
 printf '%-20s %12s %10s %10s  %s\n' target executions exec/s wall result
