@@ -199,8 +199,8 @@ int guarded_run(F&& body) {
   } catch (const run::InstabilityError& e) {
     std::cerr << "\npolyfloe: the run became unstable: " << e.what() << "\n";
     return run::kExitUnstable;
-  } catch (const forcing::FieldError& e) {
-    std::cerr << "\npolyfloe: the ice left the ocean field: " << e.what()
+  } catch (const forcing::FieldError& e) {  // ocean or wind, in space or in time: e names the field's source
+    std::cerr << "\npolyfloe: a forcing field does not cover the run: " << e.what()
               << "\nThe frames written so far are complete.\n";
     return run::kExitFailure;
   } catch (const std::exception& e) {

@@ -90,7 +90,7 @@ std::string first_message(MPI_Comm comm, int rank, int ranks, std::string mine) 
 [[noreturn]] void abort_alone(MPI_Comm comm, int rank, const std::exception& e) {
   if (dynamic_cast<const forcing::FieldError*>(&e))
     std::fprintf(stderr,
-                 "\npolyfloe: the ice left the ocean field (rank %d): %s\nThe frames written so far are "
+                 "\npolyfloe: a forcing field does not cover the run (rank %d): %s\nThe frames written so far are "
                  "complete.\n",
                  rank, e.what());
   else

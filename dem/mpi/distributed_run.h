@@ -5,7 +5,7 @@
 //
 // The ranks stop together: an error only rank 0 meets (its output folder, a checkpoint that does not fit) is
 // agreed on before the next collective, and an unstable step is agreed on every step (the guard of run/guard.h on
-// each rank's share). An error one rank meets in the middle of a step (the ice left the ocean field) cannot be
+// each rank's share). An error one rank meets in the middle of a step (the ice left a field file's grid) cannot be
 // agreed on: that rank reports it and aborts the job (MPI_Abort).
 #pragma once
 

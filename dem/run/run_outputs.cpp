@@ -109,7 +109,7 @@ BasicRunOutputs<W>::BasicRunOutputs(const scene::Scene& scene, const W& world, c
 template <class W>
 BasicRunOutputs<W>::~BasicRunOutputs() {
   // results.xmf describes the frames results.h5 holds: written with each checkpoint and at the end, and also when
-  // the run stops on an exception (unstable, the ice left the field, ...).
+  // the run stops on an exception (unstable, the ice left a field, ...).
   if (!started_ || h5_ == nullptr || std::uncaught_exceptions() == 0) return;
   try {
     write_xdmf();

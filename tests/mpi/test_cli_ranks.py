@@ -307,12 +307,12 @@ def field_file_runs(polyfloe, work, env, quick):
         if d:
             fail(f"field file on {ranks} ranks: differs from one process: " + "; ".join(d[:5]))
         print(f"field file: {ranks} ranks: {'same' if not d else 'DIFFERENT'}", flush=True)
-    # The ice leaves a field that ends at x = 305 m: the rank that owns the first floe to leave reports it.
-    write_field(os.path.join(folder, "ocean.h5"), 305.0)
+    # The ice leaves a field that ends at x = 301 m: the rank that owns the first floe to leave reports it.
+    write_field(os.path.join(folder, "ocean.h5"), 301.0)
     with open(scene, "w") as f:
         f.write(FIELD_SCENE.replace("DURATION", "20"))
     r = run(MPIRUN + ["-np", "3"] + args + [os.path.join(work, "field_left")], env)
-    if r.returncode != 1 or r.stderr.count("the ice left the ocean field") != 1:
+    if r.returncode != 1 or r.stderr.count("a forcing field does not cover the run") != 1:
         fail(f"a field the ice leaves, on 3 ranks: exit {r.returncode} (not 1) or not one message: "
              f"{r.stderr[-2000:]}")
     else:
@@ -329,9 +329,13 @@ def field_file_runs(polyfloe, work, env, quick):
                            stderr=subprocess.PIPE, text=True, env=env, timeout=120)
     except subprocess.TimeoutExpired:
         return fail("a wind field short of the ice at t = 0, on 2 ranks: still running after 120 s (a rank waits)")
-    if one.returncode != 1 or r.returncode != 1 or "field" not in r.stderr:
+    # The message names the wind file, and not the ocean (which covers the ice).
+    said = [p.stderr for p in (one, r)]
+    if one.returncode != 1 or r.returncode != 1 or any(
+            "a forcing field does not cover the run" not in s or "wind.h5: no water" not in s or "ocean" in s
+            for s in said):
         fail(f"a wind field short of the ice at t = 0: exit {r.returncode} on 2 ranks, {one.returncode} in one "
-             f"process (both should be 1, naming the field): {r.stderr[-1500:]}")
+             f"process (both should be 1, naming the wind file, not the ocean): {said[0][-800:]} / {said[1][-800:]}")
     else:
         print("field file: a wind field short of the ice at t = 0 on 2 ranks: exit 1, as one process", flush=True)
 
