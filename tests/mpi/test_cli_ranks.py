@@ -332,7 +332,7 @@ def field_file_runs(polyfloe, work, env, quick):
     # The message names the wind file, and not the ocean (which covers the ice).
     said = [p.stderr for p in (one, r)]
     if one.returncode != 1 or r.returncode != 1 or any(
-            "a forcing field does not cover the run" not in s or "wind.h5: no water" not in s or "ocean" in s
+            "a forcing field does not cover the run" not in s or "wind.h5: no water" not in s or "ocean.h5" in s
             for s in said):
         fail(f"a wind field short of the ice at t = 0: exit {r.returncode} on 2 ranks, {one.returncode} in one "
              f"process (both should be 1, naming the wind file, not the ocean): {said[0][-800:]} / {said[1][-800:]}")

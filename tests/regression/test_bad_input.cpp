@@ -123,6 +123,7 @@ class BadInput : public ::testing::TestWithParam<Case> {
     base_ = fs::temp_directory_path() / ("polyfloe_bad_input_" + std::to_string(getpid()));
     fs::remove_all(base_);
     fs::create_directories(base_);
+    made_ = false;  // (a repeated suite, --gtest_repeat, starts from an empty folder)
   }
   // Makes those files once, for the first case that refers to them (@CKPT..., @RESULTS). Most cases do not, and
   // CTest runs each case in a process of its own: the two runs this takes cost ~1.5 s a case under the sanitizers.
@@ -232,8 +233,7 @@ TEST_P(BadInput, ExitsTwoNamingTheProblemAndWritesNothing) {
   const fs::path out = scratch / "out";
   for (const std::string& a : c.args) {
     if (a.find("@CKPT") != std::string::npos || a.find("@RESULTS") != std::string::npos) {
-      make_files();
-      ASSERT_TRUE(made_) << "the checkpoint and results files the case refers to could not be made";
+      ASSERT_NO_FATAL_FAILURE(make_files());
       break;
     }
   }
