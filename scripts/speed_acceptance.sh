@@ -125,6 +125,11 @@ for order, label in (("Sorted", "lattice order"), ("", "random order")):
     point(f"flat from 1.5k to 1.5M floes, contact only, {label}", "+-20 %",
           " / ".join(f"{x:.3f}" for x in series) + f": +-{100 * spread:.1f} %", spread <= 0.2)
 
+for n in (150000, 1500000):
+    rand, lattice = us(f"BM_DensePackContactOnly/{n}/1"), us(f"BM_DensePackContactOnlySorted/{n}/1")
+    point(f"random order against lattice order, contact only, {n} floes, same run", "<= 1.1x",
+          f"{rand:.3f} / {lattice:.3f} = {rand / lattice:.2f}x", rand <= 1.1 * lattice)
+
 for case in ("BM_DensePack/15000", "BM_DensePack/150000", "BM_DensePackSorted/15000", "BM_DensePackSorted/150000",
              "BM_DensePackContactOnly/150000"):
     one, two = us(case + "/1"), us(case + "/2")
