@@ -4,9 +4,10 @@
 // one process, on any number of ranks and threads, and a checkpoint restarts on any number of ranks.
 //
 // The ranks stop together: an error only rank 0 meets (its output folder, a checkpoint that does not fit) is
-// agreed on before the next collective, and an unstable step is agreed on every step (the guard of run/guard.h: each rank
-// checks its own floes, and the ice's kinetic energy is every rank's share summed). An error one rank meets in the middle of a step (the ice left a field file's grid) cannot be
-// agreed on: that rank reports it and aborts the job (MPI_Abort).
+// agreed on before the next collective, and an unstable step is agreed on every step (the guard of run/guard.h:
+// each rank checks its own floes, and the ice's kinetic energy is every rank's share summed). An error one rank
+// meets in the middle of a step (the ice left a field file's grid) cannot be agreed on: that rank reports it and
+// aborts the job (MPI_Abort).
 #pragma once
 
 #include <mpi.h>

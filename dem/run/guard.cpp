@@ -141,10 +141,10 @@ std::string runaway_energy_message(const W& w, double energy, double limit, dyna
   return why.str() + advice(w, dt);
 }
 
-}  // namespace
-
 // The fastest a dynamic body may move [m/s]: max(50, 20 x the reference speed).
-static double runaway_speed_limit(double reference_speed) { return std::max(50.0, 20.0 * reference_speed); }
+double runaway_speed_limit(double reference_speed) { return std::max(50.0, 20.0 * reference_speed); }
+
+}  // namespace
 
 double runaway_energy_limit(double mass, double reference_speed) {
   const double ref = std::max(1.0, reference_speed);
