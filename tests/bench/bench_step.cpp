@@ -17,6 +17,10 @@
 //   BM_DensePackContactOnly/<N>  the DensePack with every drift term off: the contact dynamics alone, what the
 //                      LAMMPS disk pack of scripts/bench_lammps.sh does (it has no drag); up to 1.5M floes.
 //   BM_DensePackContactOnlySorted/<N>  the same added in lattice order.
+//   BM_ContactOnlyOrderSameRun/<N>  both, random and lattice order, stepped by turns in one process: their ratio
+//                      turn by turn, which a shared machine's swings of speed (up to 40 % between runs minutes
+//                      apart here) reach alike; BM_ContactOnlySizesSameRun the same for random order at 1.5k, 15k,
+//                      150k and 1.5M floes (the counters are described at each case).
 //
 // Bodies are added in random order (no relation to position: bodies added in any order, e.g. a generated field
 // largest first, as scenes did before 2026-11-25) except in the Sorted cases. The World stores them in space order
@@ -63,9 +67,11 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "contact/broad_phase.h"
@@ -106,24 +112,42 @@ const Pack& pack_for(int n, Kind kind) {
   return cache.emplace(std::pair{n, kind}, make_pack(n, ps, kind == Kind::free ? 11u : 7u)).first->second;
 }
 
-void run(benchmark::State& state, Kind kind, contact::ForceModel model = contact::ForceModel::centroid) {
-  const int n = static_cast<int>(state.range(0));
-  const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : 1;
-  const bool dense = kind != Kind::free;
-  const Pack& pack = pack_for(n, kind);
-  dynamics::WorldSettings ws;
+// A World of `pack` as a scene builds one (bodies stored in space order), forces evaluated and two steps taken (the
+// contact cache filled, scratch vectors sized), and its time step: shortest_contact_duration(1 m/s) / 40.
+struct WarmWorld {
+  dynamics::WorldSettings settings;
+  std::unique_ptr<dynamics::World> world;
+  double dt = 0.0;
+};
+
+WarmWorld warm_world(const Pack& pack, Kind kind, int threads,
+                     contact::ForceModel model = contact::ForceModel::centroid) {
+  WarmWorld w;
+  dynamics::WorldSettings& ws = w.settings;
   ws.store_in_space_order = true;  // as scene::build_world's worlds
   ws.contact.force_model = model;
   ws.drift.ocean = forcing::make_field(forcing::FieldSpec::uniform({0.2, 0.05}));
   ws.drift.wind = forcing::make_field(forcing::FieldSpec::uniform({8.0, 6.0}));
   if (kind == Kind::dense_contact || kind == Kind::dense_contact_sorted)
     ws.drift.form_drag = ws.drift.moment_drag = ws.drift.skin_drag = ws.drift.air_drag = ws.drift.coriolis = false;
-  dynamics::World world(ws);
-  world.set_threads(threads);
-  for (const auto& d : pack.bodies) world.add_body(d);
-  const double dt = world.shortest_contact_duration(1.0) / 40.0;
-  world.compute_forces(0.0);
-  for (int k = 0; k < 2; ++k) world.step(dt);  // warm: contact cache filled, scratch vectors sized
+  w.world = std::make_unique<dynamics::World>(ws);
+  w.world->set_threads(threads);
+  for (const auto& d : pack.bodies) w.world->add_body(d);
+  w.dt = w.world->shortest_contact_duration(1.0) / 40.0;
+  w.world->compute_forces(0.0);
+  for (int k = 0; k < 2; ++k) w.world->step(w.dt);
+  return w;
+}
+
+void run(benchmark::State& state, Kind kind, contact::ForceModel model = contact::ForceModel::centroid) {
+  const int n = static_cast<int>(state.range(0));
+  const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : 1;
+  const bool dense = kind != Kind::free;
+  const Pack& pack = pack_for(n, kind);
+  WarmWorld warm = warm_world(pack, kind, threads, model);
+  dynamics::World& world = *warm.world;
+  const dynamics::WorldSettings& ws = warm.settings;
+  const double dt = warm.dt;
   if (dense && 2.0 * static_cast<double>(world.contacts().size()) / pack.floes < 2.0) {
     state.SkipWithError("the dense pack has fewer than 2 contacts per floe at the start");
     return;
@@ -244,6 +268,125 @@ void BM_MemoryPerFloe(benchmark::State& state) {
   state.counters["bytes_per_floe"] = bytes / floes;
 }
 
+// Turns of steps for worlds measured in one run (the *SameRun cases): each turn `steps` steps of one World, timed
+// in this thread's CPU time, so that all worlds meet the machine's load alike however it moves during the run.
+struct Turns {
+  WarmWorld w;
+  int floes = 0;
+  int steps = 1;
+  std::vector<double> us;  // each turn's us per floe-step
+  void take() {
+    const double t0 = thread_cpu_seconds();
+    for (int k = 0; k < steps; ++k) w.world->step(w.dt);
+    us.push_back(1e6 * (thread_cpu_seconds() - t0) / (static_cast<double>(steps) * floes));
+  }
+  dynamics::StepProfile p0;  // the World's stage times when the counted turns began
+  void warm_turn() {         // a turn not counted: every World has taken one since the others were built
+    take();
+    us.clear();
+    p0 = w.world->profile();
+  }
+  // The counted turns' stage times [ns per floe-step] as counters named <prefix>_<stage>_ns.
+  void stage_counters(benchmark::State& state, const std::string& prefix) const {
+    const dynamics::StepProfile p1 = w.world->profile();
+    const double per = 1e9 / (static_cast<double>(us.size()) * steps * floes);
+    state.counters[prefix + "_shapes_ns"] = per * (p1.shapes - p0.shapes);
+    state.counters[prefix + "_broad_ns"] = per * (p1.broad - p0.broad);
+    state.counters[prefix + "_narrow_law_ns"] = per * (p1.narrow_and_law - p0.narrow_and_law);
+    state.counters[prefix + "_integrate_ns"] = per * (p1.integrate - p0.integrate);
+  }
+  bool stable() const { return w.world->max_speed() < 10.0; }
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// Max / min of a series as +-: (max - min) / (max + min).
+double spread(const std::vector<double>& v) {
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return (*hi - *lo) / (*hi + *lo);
+}
+
+Turns turns_of(int n, Kind kind, double floe_steps_per_turn) {
+  const Pack& pack = pack_for(n, kind);
+  Turns t{warm_world(pack, kind, 1), pack.floes, 1, {}, {}};
+  t.steps = std::max(1, static_cast<int>(std::lround(floe_steps_per_turn / pack.floes)));
+  return t;
+}
+
+// BM_ContactOnlyOrderSameRun/<N>: the contact-only pack in random order and in lattice order, two Worlds stepped by
+// turns in one process (each iteration a turn of each, the one that goes first alternating; a turn about 300k
+// floe-steps), so that slow swings of a shared machine's speed fall on both alike. Counters: random_us and
+// lattice_us, the medians of their turns [us per floe-step]; ratio, the median of each iteration's random /
+// lattice (two turns next to each other in time); ratio_of_medians.
+void BM_ContactOnlyOrderSameRun(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Turns random = turns_of(n, Kind::dense_contact, 3e5), lattice = turns_of(n, Kind::dense_contact_sorted, 3e5);
+  random.warm_turn();
+  lattice.warm_turn();
+  std::vector<double> ratios;
+  bool random_first = true;
+  for (auto _ : state) {
+    Turns& first = random_first ? random : lattice;
+    Turns& second = random_first ? lattice : random;
+    first.take();
+    second.take();
+    random_first = !random_first;
+    ratios.push_back(random.us.back() / lattice.us.back());
+    state.SetIterationTime(
+        1e-6 * (random.us.back() * random.steps * random.floes + lattice.us.back() * lattice.steps * lattice.floes));
+  }
+  if (!random.stable() || !lattice.stable()) {
+    state.SkipWithError("a pack became unstable during timing");
+    return;
+  }
+  state.counters["floes"] = random.floes;
+  state.counters["steps_per_turn"] = random.steps;
+  state.counters["random_us"] = median(random.us);
+  state.counters["lattice_us"] = median(lattice.us);
+  state.counters["ratio"] = median(ratios);
+  state.counters["ratio_of_medians"] = median(random.us) / median(lattice.us);
+  state.counters["ratio_min"] = *std::min_element(ratios.begin(), ratios.end());
+  state.counters["ratio_max"] = *std::max_element(ratios.begin(), ratios.end());
+  random.stage_counters(state, "random");
+  lattice.stage_counters(state, "lattice");
+}
+
+// BM_ContactOnlySizesSameRun: the contact-only pack in random order at 1.5k, 15k, 150k and 1.5M floes, four Worlds
+// stepped by turns in one process (each iteration a turn of each, about 600k floe-steps, at least one step; the one
+// that goes first rotating). Counters: us_<N>, the median of each size's turns [us per floe-step]; spread_percent,
+// (max - min) / (max + min) of those medians [%], what "flat within +-20 %" is measured by.
+void BM_ContactOnlySizesSameRun(benchmark::State& state) {
+  const std::vector<int> sizes{1500, 15000, 150000, 1500000};
+  std::vector<Turns> worlds;
+  for (const int n : sizes) worlds.push_back(turns_of(n, Kind::dense_contact, 6e5));
+  for (Turns& t : worlds) t.warm_turn();
+  std::size_t first = 0;
+  for (auto _ : state) {
+    double seconds = 0.0;
+    for (std::size_t k = 0; k < worlds.size(); ++k) {
+      Turns& t = worlds[(first + k) % worlds.size()];
+      t.take();
+      seconds += 1e-6 * t.us.back() * t.steps * t.floes;
+    }
+    first = (first + 1) % worlds.size();
+    state.SetIterationTime(seconds);
+  }
+  std::vector<double> medians;
+  for (std::size_t k = 0; k < worlds.size(); ++k) {
+    if (!worlds[k].stable()) {
+      state.SkipWithError("a pack became unstable during timing");
+      return;
+    }
+    medians.push_back(median(worlds[k].us));
+    state.counters["us_" + std::to_string(sizes[k])] = medians.back();
+  }
+  state.counters["spread_percent"] = 100.0 * spread(medians);
+}
+
 }  // namespace
 
 // Fixed step counts (the set-up is not repeated to calibrate): about 1.5 million floe-steps per case. The second
@@ -274,5 +417,11 @@ BENCHMARK(BM_DensePackContactOnlySorted)->Args({1500, 1})->Iterations(1000)->Uni
 BENCHMARK(BM_DensePackContactOnlySorted)->Args({15000, 1})->Iterations(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackContactOnlySorted)->Args({150000, 1})->Iterations(10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensePackContactOnlySorted)->Args({1500000, 1})->Iterations(3)->Unit(benchmark::kMillisecond);
+
+// Worlds measured by turns in one run (a turn not counted first): 150k: 40 iterations of 2 + 2 steps; 1.5M: 16 of
+// 1 + 1; the sizes: 12 of 400 + 40 + 4 + 1 steps. About 20-40 s each, and the packs built.
+BENCHMARK(BM_ContactOnlyOrderSameRun)->Arg(150000)->Iterations(40)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ContactOnlyOrderSameRun)->Arg(1500000)->Iterations(16)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ContactOnlySizesSameRun)->Iterations(12)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
