@@ -15,7 +15,8 @@
 #       medians of -r 5
 #   after --: passed to both executables (e.g. --benchmark_filter=DensePack)
 #
-# Run time once built, on the 2-core reference machine: about 1 min for -r 1, about 4 min for -r 5.
+# Run time once built, on the 2-core reference machine: several minutes a repetition (bench_step's 1.5M-floe
+# and same-run cases take most of it; docs/performance.md, "How to rerun").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -79,18 +80,30 @@ def rows(name):
         data = json.load(f)
     runs = [b for b in data["benchmarks"] if b.get("run_type") != "aggregate" or b.get("aggregate_name") == "median"]
     runs = [b for b in runs if "error_occurred" not in b]
-    key = lambda b: (b["run_name"].split("/")[0], int(b["run_name"].split("/")[1]))
+    def key(b):  # by case, then by its first argument (none: 0)
+        parts = b["run_name"].split("/")
+        return parts[0], int(parts[1]) if len(parts) > 1 and parts[1].isdigit() else 0
     return sorted(runs, key=key)
 print("\nsummary (median over repetitions where repeated; CPU time)")
 print("  narrow phase             ns/pair")
 for b in rows("bench_narrow_phase.json"):
     print(f"  {b['run_name'].split('/min_time')[0]:<24} {b['ns_per_pair']:8.1f}")
-print("  step                     us/floe-step  contacts/floe  candidates/floe  narrow_only ns/floe  narrow_law ns/floe")
+print(f"  {'step':<42} us/floe-step  contacts/floe  candidates/floe  narrow_only ns/floe  narrow_law ns/floe")
 for b in rows("bench_step.json"):
+    name = b['run_name'].split('/iterations')[0]
     if "bytes_per_floe" in b:
-        print(f"  {b['run_name'].split('/iterations')[0]:<24} {b['bytes_per_floe']:12.0f}  bytes per floe (heap)")
+        print(f"  {name:<42} {b['bytes_per_floe']:12.0f}  bytes per floe (heap)")
         continue
-    print(f"  {b['run_name'].split('/iterations')[0]:<24} {b['us_per_floe_step']:12.3f}  {b['contacts_per_floe']:13.3f}"
+    if "ratio" in b:  # BM_ContactOnlyOrderSameRun: two Worlds by turns
+        print(f"  {name:<42} random {b['random_us']:.3f}, lattice {b['lattice_us']:.3f} us/floe-step;"
+              f" random / lattice turn by turn {b['ratio']:.3f}")
+        continue
+    if "spread_percent" in b:  # BM_ContactOnlySizesSameRun: four Worlds by turns
+        sizes = sorted((int(k[3:]), v) for k, v in b.items() if k.startswith("us_") and k[3:].isdigit())
+        print(f"  {name:<42} " + " / ".join(f"{v:.3f}" for _, v in sizes) +
+              f" us/floe-step at {' / '.join(str(n) for n, _ in sizes)} floes: +-{b['spread_percent']:.1f} %")
+        continue
+    print(f"  {name:<42} {b['us_per_floe_step']:12.3f}  {b['contacts_per_floe']:13.3f}"
           f"  {b['candidates_per_floe']:15.3f}  {b['narrow_only_ns']:19.0f}  {b['narrow_law_ns']:18.0f}")
 print("  drift                    ns/floe  torque error  force error  (label)")
 for b in rows("bench_drift.json"):

@@ -17,15 +17,17 @@
 //   BM_DensePackContactOnly/<N>  the DensePack with every drift term off: the contact dynamics alone, what the
 //                      LAMMPS disk pack of scripts/bench_lammps.sh does (it has no drag); up to 1.5M floes.
 //   BM_DensePackContactOnlySorted/<N>  the same added in lattice order.
-//   BM_ContactOnlyOrderSameRun/<N>  both, random and lattice order, stepped by turns in one process: their ratio
-//                      turn by turn, which a shared machine's swings of speed (up to 40 % between runs minutes
-//                      apart here) reach alike; BM_ContactOnlySizesSameRun the same for random order at 1.5k, 15k,
-//                      150k and 1.5M floes (the counters are described at each case).
+//   BM_ContactOnlyOrderSameRun/<N>  both, the random-order and the lattice-order World, stepped by turns in one
+//                      process on one thread: their ratio turn by turn, which a shared machine's swings of speed (up
+//                      to 40 % between runs minutes apart here) reach alike; BM_ContactOnlySizesSameRun (no
+//                      argument) the same for random order at 1.5k, 15k, 150k and 1.5M floes. Their time is manual
+//                      time: the thread CPU time of the counted turns (the counters are described at each case).
 //
 // Bodies are added in random order (no relation to position: bodies added in any order, e.g. a generated field
-// largest first, as scenes did before 2026-11-25) except in the Sorted cases. The World stores them in space order
-// (WorldSettings::store_in_space_order, as a scene's World does): random order should then cost what lattice order
-// does (before 2026-11-27 the World kept the order bodies were added in: 1.3-1.6x at 150k-1.5M floes).
+// largest first, as scenes did before 2026-11-25) except in the Sorted cases and the lattice World of
+// BM_ContactOnlyOrderSameRun. The World stores them in space order (WorldSettings::store_in_space_order, as a
+// scene's World does): random order should then cost what lattice order does (before 2026-11-27 the World kept the
+// order bodies were added in: 1.3-1.6x at 150k-1.5M floes).
 //
 // All but the ContactOnly cases have every default drift term on (form drag, drag moment, skin and air drag;
 // current 0.2 m/s, wind 10 m/s, not aligned); h = 1 m, dt = shortest_contact_duration(1 m/s) / 40, the time step a
@@ -269,7 +271,8 @@ void BM_MemoryPerFloe(benchmark::State& state) {
 }
 
 // Turns of steps for worlds measured in one run (the *SameRun cases): each turn `steps` steps of one World, timed
-// in this thread's CPU time, so that all worlds meet the machine's load alike however it moves during the run.
+// in this thread's CPU time. Turns of the worlds follow each other closely, so that they all meet the machine's
+// load alike however it moves during the run.
 struct Turns {
   WarmWorld w;
   int floes = 0;
@@ -318,10 +321,11 @@ Turns turns_of(int n, Kind kind, double floe_steps_per_turn) {
 }
 
 // BM_ContactOnlyOrderSameRun/<N>: the contact-only pack in random order and in lattice order, two Worlds stepped by
-// turns in one process (each iteration a turn of each, the one that goes first alternating; a turn about 300k
-// floe-steps), so that slow swings of a shared machine's speed fall on both alike. Counters: random_us and
-// lattice_us, the medians of their turns [us per floe-step]; ratio, the median of each iteration's random /
-// lattice (two turns next to each other in time); ratio_of_medians.
+// turns in one process (each iteration a turn of each, the one that goes first alternating; a turn 300k floe-steps
+// rounded to whole steps, at least one: 2 steps at 150k, 1 at 1.5M), so that slow swings of a shared machine's
+// speed fall on both alike. Counters: random_us and lattice_us, the medians of their turns [us per floe-step];
+// ratio, the median of each iteration's random / lattice (two turns next to each other in time); ratio_of_medians;
+// ratio_min, ratio_max; each World's stage times (<order>_<stage>_ns, wall clock, as the DensePack cases').
 void BM_ContactOnlyOrderSameRun(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   Turns random = turns_of(n, Kind::dense_contact, 3e5), lattice = turns_of(n, Kind::dense_contact_sorted, 3e5);
@@ -356,9 +360,10 @@ void BM_ContactOnlyOrderSameRun(benchmark::State& state) {
 }
 
 // BM_ContactOnlySizesSameRun: the contact-only pack in random order at 1.5k, 15k, 150k and 1.5M floes, four Worlds
-// stepped by turns in one process (each iteration a turn of each, about 600k floe-steps, at least one step; the one
-// that goes first rotating). Counters: us_<N>, the median of each size's turns [us per floe-step]; spread_percent,
-// (max - min) / (max + min) of those medians [%], what "flat within +-20 %" is measured by.
+// stepped by turns in one process (each iteration a turn of each, 600k floe-steps rounded to whole steps, at least
+// one: 405, 40, 4 and 1 steps; the one that goes first rotating). Counters: us_<N>, the median of each size's turns
+// [us per floe-step]; spread_percent, (max - min) / (max + min) of those medians [%], what "flat within +-20 %" is
+// measured by.
 void BM_ContactOnlySizesSameRun(benchmark::State& state) {
   const std::vector<int> sizes{1500, 15000, 150000, 1500000};
   std::vector<Turns> worlds;
@@ -419,7 +424,7 @@ BENCHMARK(BM_DensePackContactOnlySorted)->Args({150000, 1})->Iterations(10)->Uni
 BENCHMARK(BM_DensePackContactOnlySorted)->Args({1500000, 1})->Iterations(3)->Unit(benchmark::kMillisecond);
 
 // Worlds measured by turns in one run (a turn not counted first): 150k: 40 iterations of 2 + 2 steps; 1.5M: 16 of
-// 1 + 1; the sizes: 12 of 400 + 40 + 4 + 1 steps. About 20-40 s each, and the packs built.
+// 1 + 1; the sizes: 12 of 405 + 40 + 4 + 1 steps. About 20-40 s each, and the packs built.
 BENCHMARK(BM_ContactOnlyOrderSameRun)->Arg(150000)->Iterations(40)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ContactOnlyOrderSameRun)->Arg(1500000)->Iterations(16)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ContactOnlySizesSameRun)->Iterations(12)->UseManualTime()->Unit(benchmark::kMillisecond);
