@@ -80,6 +80,7 @@
 #include "dynamics/world.h"
 #include "forcing/analytic_fields.h"
 #include "dense_pack.h"
+#include "statistics.h"
 #include "test_support.h"
 #include "thread_clock.h"
 
@@ -91,6 +92,8 @@ namespace {
 using tsupport::make_pack;
 using tsupport::Pack;
 using tsupport::PackSpec;
+using tsupport::percentile;
+using tsupport::spread;
 using tsupport::thread_cpu_seconds;
 
 enum class Kind { dense, dense_sorted, free, dense_contact, dense_contact_sorted };
@@ -277,14 +280,17 @@ struct Turns {
   WarmWorld w;
   int floes = 0;
   int steps = 1;
-  std::vector<double> us;  // each turn's us per floe-step
-  void take() {
+  std::vector<double> us;    // each turn's us per floe-step
+  dynamics::StepProfile p0;  // the World's stage times when the counted turns began
+  // One turn; its thread CPU time [s].
+  double take() {
     const double t0 = thread_cpu_seconds();
     for (int k = 0; k < steps; ++k) w.world->step(w.dt);
-    us.push_back(1e6 * (thread_cpu_seconds() - t0) / (static_cast<double>(steps) * floes));
+    const double seconds = thread_cpu_seconds() - t0;
+    us.push_back(1e6 * seconds / (static_cast<double>(steps) * floes));
+    return seconds;
   }
-  dynamics::StepProfile p0;  // the World's stage times when the counted turns began
-  void warm_turn() {         // a turn not counted: every World has taken one since the others were built
+  void warm_turn() {  // a turn not counted: every World has taken one since the others were built
     take();
     us.clear();
     p0 = w.world->profile();
@@ -300,18 +306,6 @@ struct Turns {
   }
   bool stable() const { return w.world->max_speed() < 10.0; }
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-// Max / min of a series as +-: (max - min) / (max + min).
-double spread(const std::vector<double>& v) {
-  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-  return (*hi - *lo) / (*hi + *lo);
-}
 
 Turns turns_of(int n, Kind kind, double floe_steps_per_turn) {
   const Pack& pack = pack_for(n, kind);
@@ -336,12 +330,10 @@ void BM_ContactOnlyOrderSameRun(benchmark::State& state) {
   for (auto _ : state) {
     Turns& first = random_first ? random : lattice;
     Turns& second = random_first ? lattice : random;
-    first.take();
-    second.take();
+    const double seconds = first.take();  // (two statements: the order of a sum's operands is unspecified)
+    state.SetIterationTime(seconds + second.take());
     random_first = !random_first;
     ratios.push_back(random.us.back() / lattice.us.back());
-    state.SetIterationTime(
-        1e-6 * (random.us.back() * random.steps * random.floes + lattice.us.back() * lattice.steps * lattice.floes));
   }
   if (!random.stable() || !lattice.stable()) {
     state.SkipWithError("a pack became unstable during timing");
@@ -349,10 +341,10 @@ void BM_ContactOnlyOrderSameRun(benchmark::State& state) {
   }
   state.counters["floes"] = random.floes;
   state.counters["steps_per_turn"] = random.steps;
-  state.counters["random_us"] = median(random.us);
-  state.counters["lattice_us"] = median(lattice.us);
-  state.counters["ratio"] = median(ratios);
-  state.counters["ratio_of_medians"] = median(random.us) / median(lattice.us);
+  state.counters["random_us"] = percentile(random.us, 0.5);
+  state.counters["lattice_us"] = percentile(lattice.us, 0.5);
+  state.counters["ratio"] = percentile(ratios, 0.5);
+  state.counters["ratio_of_medians"] = percentile(random.us, 0.5) / percentile(lattice.us, 0.5);
   state.counters["ratio_min"] = *std::min_element(ratios.begin(), ratios.end());
   state.counters["ratio_max"] = *std::max_element(ratios.begin(), ratios.end());
   random.stage_counters(state, "random");
@@ -372,11 +364,7 @@ void BM_ContactOnlySizesSameRun(benchmark::State& state) {
   std::size_t first = 0;
   for (auto _ : state) {
     double seconds = 0.0;
-    for (std::size_t k = 0; k < worlds.size(); ++k) {
-      Turns& t = worlds[(first + k) % worlds.size()];
-      t.take();
-      seconds += 1e-6 * t.us.back() * t.steps * t.floes;
-    }
+    for (std::size_t k = 0; k < worlds.size(); ++k) seconds += worlds[(first + k) % worlds.size()].take();
     first = (first + 1) % worlds.size();
     state.SetIterationTime(seconds);
   }
@@ -386,7 +374,7 @@ void BM_ContactOnlySizesSameRun(benchmark::State& state) {
       state.SkipWithError("a pack became unstable during timing");
       return;
     }
-    medians.push_back(median(worlds[k].us));
+    medians.push_back(percentile(worlds[k].us, 0.5));
     state.counters["us_" + std::to_string(sizes[k])] = medians.back();
   }
   state.counters["spread_percent"] = 100.0 * spread(medians);

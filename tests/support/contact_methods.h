@@ -13,6 +13,7 @@
 #include "contact/narrow_phase_planar.h"
 #include "contact/narrow_phase_sat3d.h"
 #include "geometry/polyhedron.h"
+#include "statistics.h"
 
 namespace polyfloe::tsupport {
 
@@ -75,16 +76,6 @@ inline MethodResult run_contact_method(int m, const MethodInput& p) {
     }
   }
   return r;
-}
-
-// Linear interpolation between order statistics; NaN for an empty set.
-inline double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(pos);
-  const double f = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
 }
 
 }  // namespace polyfloe::tsupport
