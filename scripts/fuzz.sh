@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Fuzzes the scene reader and polygon validation / the planar narrow phase with libFuzzer, AddressSanitizer (leak
 # detection on) and UndefinedBehaviorSanitizer: installs clang if missing (scripts/setup.sh fuzz), builds the
-# targets of tests/fuzz into build-fuzz/ (clang, RelWithDebInfo, warnings as errors) and runs each target, as many
+# targets of tests/fuzz into build-fuzz/ (clang, -O1 -g1, warnings as errors) and runs each target, as many
 # side by side as there are cores.
 #
 #   bash scripts/fuzz.sh                 # = --smoke: 60 s per target (the CI step)
 #   bash scripts/fuzz.sh --time 600      # 600 s per target
 #   bash scripts/fuzz.sh --runs 1000000  # 10^6 executions per target (docs/validation.md, Fuzzing)
 #   bash scripts/fuzz.sh --runs 1000 fuzz_polygon   # only the named targets
+#   bash scripts/fuzz.sh --smoke --build build-asan  # the targets of the sanitizer build (scripts/sanitize.sh builds
+#                                                    # them; the CI step), instead of building build-fuzz/
 #
 # The corpus grows in a work directory outside the source tree ($POLYFLOE_FUZZ_DIR, default a new directory under
 # ${TMPDIR:-/tmp}), seeded with dem/scenes/*.yaml and tests/bad_input/*.yaml (scene target) and the inputs saved
@@ -23,11 +25,13 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; }
 limit=(-max_total_time=60)
 what="60 s"
 targets=()
+BUILD_DIR=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --smoke) limit=(-max_total_time=60); what="60 s" ;;
     --time) limit=(-max_total_time="${2:?--time needs seconds}"); what="$2 s"; shift ;;
     --runs) limit=(-runs="${2:?--runs needs a count}"); what="$2 executions"; shift ;;
+    --build) BUILD_DIR="${2:?--build needs the sanitizer build folder}"; shift ;;
     -h|--help) usage; exit 0 ;;
     fuzz_*) targets+=("$1") ;;
     *) echo "fuzz: unknown argument '$1'" >&2; usage >&2; exit 2 ;;
@@ -38,11 +42,24 @@ done
 
 bash scripts/setup.sh fuzz
 
-BUILD_DIR=build-fuzz
 t0=$(date +%s)
-cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
-  -DCMAKE_CXX_COMPILER=clang++ -DPOLYFLOE_FUZZ=ON -DPOLYFLOE_WERROR=ON -DBUILD_TESTING=OFF >/dev/null
-cmake --build "$BUILD_DIR" -j "$(nproc)" --target "${targets[@]}"
+if [ -n "$BUILD_DIR" ]; then
+  # An existing build configured with -DPOLYFLOE_FUZZ=ON (scripts/sanitize.sh): only what the targets lack is built.
+  if ! grep -q '^POLYFLOE_FUZZ:BOOL=ON' "$BUILD_DIR/CMakeCache.txt" 2>/dev/null; then
+    echo "fuzz: $BUILD_DIR is not a build with -DPOLYFLOE_FUZZ=ON (bash scripts/sanitize.sh makes build-asan)" >&2
+    exit 2
+  fi
+  cmake --build "$BUILD_DIR" -j "$(nproc)" --target "${targets[@]}"
+else
+  BUILD_DIR=build-fuzz
+  # -O1 with line tables only (-g1), as the sanitizer build: reports keep function names, files and lines, and the
+  # build takes about half the time of -O2 -g.
+  flags="-O1 -g1 -DNDEBUG"
+  cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+    -DCMAKE_CXX_COMPILER=clang++ -DPOLYFLOE_FUZZ=ON -DPOLYFLOE_WERROR=ON -DBUILD_TESTING=OFF \
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$flags" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=$flags" >/dev/null
+  cmake --build "$BUILD_DIR" -j "$(nproc)" --target "${targets[@]}"
+fi
 echo "fuzz: built ${targets[*]} in $(( $(date +%s) - t0 )) s"
 
 WORK="${POLYFLOE_FUZZ_DIR:-$(mktemp -d "${TMPDIR:-/tmp}/polyfloe-fuzz.XXXXXX")}"
@@ -51,6 +68,7 @@ cp dem/scenes/*.yaml tests/bad_input/*.yaml "$WORK/seeds/fuzz_scene_parser/"
 # A 64 MB quarantine (use-after-free detection window) instead of 256 MB keeps long runs well under the RSS limit.
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:quarantine_size_mb=64:${ASAN_OPTIONS:-}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"
+export LSAN_OPTIONS="suppressions=$PWD/tests/support/lsan.supp:${LSAN_OPTIONS:-}"
 
 # Arguments of one target: its own options, then the corpus directories (the first one receives new inputs).
 target_args() {

@@ -3,7 +3,8 @@
 # (well under a second). Run as root, or as a user with sudo.
 #
 #   bash scripts/setup.sh          # build, test, run, plot
-#   bash scripts/setup.sh fuzz     # the same plus clang and its libFuzzer/sanitizer runtimes (scripts/fuzz.sh)
+#   bash scripts/setup.sh fuzz     # the same plus clang, its libFuzzer/sanitizer runtimes and OpenMP
+#                                  # (scripts/sanitize.sh, scripts/fuzz.sh)
 #   bash scripts/setup.sh bench    # the same plus LAMMPS (the disk-pack anchor of scripts/bench_lammps.sh) and
 #                                  # valgrind (scripts/count_instructions.sh)
 #   bash scripts/setup.sh paraview # the same plus ParaView's pvbatch (postprocess/paraview/, scripts/pvbatch.sh):
@@ -25,7 +26,7 @@ PACKAGES=(
   openfoam-examples  # its tutorials: users' kinds of case (of_cases/tutorials, test_openfoam_tutorials.cpp)
 )
 # Optional groups, named on the command line.
-FUZZ_PACKAGES=(clang libclang-rt-dev)
+FUZZ_PACKAGES=(clang libclang-rt-dev libomp-dev)  # clang, its sanitizer and fuzzer runtimes, its OpenMP
 BENCH_PACKAGES=(lammps valgrind)
 # The shared libraries paraview 5.11 links to (its Depends, less the web server's Python modules), a software
 # OpenGL driver and a virtual display for headless rendering.

@@ -25,8 +25,8 @@ TEST(ResolvedYaml, RoundTripsTheExampleScenes) {
 TEST(ResolvedYaml, RoundTripsEveryFieldKind) {
   const char* fields[] = {
       "{type: uniform, velocity: [0.25, -1e-3]}",
-      "{type: linear, velocity: [0.1, 0.2], origin: [10, -20], gradient: [[1e-3, -2e-3], [3e-4, 0]],"
-      " depth_gradient: [0.01, 0.02]}",
+      ("{type: linear, velocity: [0.1, 0.2], origin: [10, -20], gradient: [[1e-3, -2e-3], [3e-4, 0]],"
+       " depth_gradient: [0.01, 0.02]}"),
       "{type: solid_body, centre: [500, 400], angular_velocity: -2e-3, velocity: [0.1, 0]}",
       "{type: rankine, centre: [1, 2], core_radius: 300, max_speed: 0.7, velocity: [0, 0.05]}",
       "{type: tidal, velocity: [0.05, 0], amplitude: [0.3, 0.1], period: 44712, phase: 1.5}",

@@ -3,9 +3,12 @@
 //
 //   a. A frictionless, perfectly elastic (e = 1) gas of 50 random convex floes of 3-8 corners, elongated up to 4:1,
 //      6-15 m across, moving at up to 3 m/s in a box of four fixed walls, at 40 steps per contact (each model's
-//      automatic step at 3 m/s: for the foundation model 9 times smaller, 4 minutes of the suite), run to 1,000
-//      collisions (contact starts, walls included) with the contact-resolution guard of `polyfloe run` applied
-//      every step. Reference: the initial kinetic energy, at every contact-free step. The
+//      automatic step at 3 m/s: for the foundation model 9 times smaller), run to 200 collisions (contact starts,
+//      walls included) with the contact-resolution guard of `polyfloe run` applied every step. Reference: the
+//      initial kinetic energy, at every contact-free step. The study tier (ContactEnergyStudy, label study: about
+//      2 CPU-minutes for the foundation model alone) runs the same gas to 1,000 collisions, the figures docs quote;
+//      the error grows with the collisions (and the speeds of squeezed floes with it), so the 200-collision run
+//      asserts the same bounds with the margins stated at each. The
 //      gas shares its energy out: small floes squeezed between two others reach 50-65 m/s (`polyfloe run`'s speed
 //      guard, 20 x the reference speed, would stop both runs there: a scene like this needs a higher
 //      run.reference_speed).
@@ -68,7 +71,7 @@ struct GasOutcome {
   std::string stopped;      // the run guard's message, if a run would have stopped (exit 3) there
 };
 
-GasOutcome corner_rich_gas(contact::ForceModel model) {
+GasOutcome corner_rich_gas(contact::ForceModel model, int collisions) {
   constexpr int kFloes = 50;
   constexpr double kSpacing = 16.0, kSpeed = 3.0;
   const tsupport::FloeShapes shapes{
@@ -93,7 +96,7 @@ GasOutcome corner_rich_gas(contact::ForceModel model) {
   const double e0 = w.kinetic_energy();
   GasOutcome o;
   std::vector<Pair> before, now;
-  while (o.collisions < 1000 && o.steps < 40000000) {
+  while (o.collisions < collisions && o.steps < 40000000) {
     const dynamics::StepReport& report = w.step(dt);
     ++o.steps;
     try {  // a contact resolved by too few steps stops `polyfloe run` (its speed guard is left out: see above)
@@ -152,19 +155,34 @@ double impact_energy_error(contact::ForceModel model, double yaw_a, double yaw_b
   return (w.kinetic_energy() - e0) / e0;
 }
 
+// The gas to `collisions` collisions, within each model's bound: the bounds catch a blow-up and are the same at 200
+// and at 1,000 collisions (the error grows with the collisions).
+void expect_gas_within_bound(contact::ForceModel model, int collisions) {
+  const GasOutcome o = corner_rich_gas(model, collisions);
+  EXPECT_GE(o.collisions, collisions);
+  EXPECT_GT(o.free_steps, 1000u);
+  EXPECT_TRUE(o.stopped.empty()) << o.stopped;
+  const double bound[] = {10.0, 5e-2, 1e-4};
+  EXPECT_LT(o.max_error, bound[static_cast<int>(model)]);
+}
+
 }  // namespace
 
 class ContactEnergy : public ::testing::TestWithParam<contact::ForceModel> {};
 
-TEST_P(ContactEnergy, CornerRichElasticGasReachesAThousandCollisionsWithinEachModelsEnergyBound) {
-  const GasOutcome o = corner_rich_gas(GetParam());
-  EXPECT_GE(o.collisions, 1000);
-  EXPECT_GT(o.free_steps, 1000u);
-  EXPECT_TRUE(o.stopped.empty()) << o.stopped;
-  // Measured: centroid 3.0 (the energy more than doubles: the force is not a gradient), gradient 8.3e-3,
-  // foundation 1.4e-6 (its target: 1e-4; 8.6e-6 at the others' step, where a run can meet a flat impact too fast).
-  const double bound[] = {10.0, 5e-2, 1e-4};
-  EXPECT_LT(o.max_error, bound[static_cast<int>(GetParam())]);
+// Measured at 200 collisions: centroid 2.9e-2, gradient 4.8e-4, foundation 2.3e-10 (fastest floes 14, 9 and 12 m/s),
+// under the bounds by 340x, 100x and 4e5x. The study below goes on to 1,000 collisions, where squeezed floes reach
+// 50-65 m/s and the errors grow to 3.0, 8.3e-3 and 1.4e-6: the same bounds, nearer.
+TEST_P(ContactEnergy, CornerRichElasticGasReachesTwoHundredCollisionsWithinEachModelsEnergyBound) {
+  expect_gas_within_bound(GetParam(), 200);
+}
+
+class ContactEnergyStudy : public ::testing::TestWithParam<contact::ForceModel> {};
+
+// Measured: centroid 3.0 (the energy more than doubles: the force is not a gradient), gradient 8.3e-3, foundation
+// 1.4e-6 (its target: 1e-4; 8.6e-6 at the others' step, where a run can meet a flat impact too fast).
+TEST_P(ContactEnergyStudy, CornerRichElasticGasReachesAThousandCollisionsWithinEachModelsEnergyBound) {
+  expect_gas_within_bound(GetParam(), 1000);
 }
 
 TEST_P(ContactEnergy, SingleCornerImpactsStayWithinEachModelsEnergyBoundAtFortyStepsPerContact) {
@@ -257,6 +275,10 @@ TEST_P(ContactEnergy, FloePressedFlatOnAWallStaysWithinAMilliradianOfFlatForAHun
 }
 
 INSTANTIATE_TEST_SUITE_P(ForceModels, ContactEnergy,
+                         ::testing::Values(contact::ForceModel::centroid, contact::ForceModel::gradient,
+                                           contact::ForceModel::foundation),
+                         [](const auto& info) { return name_of(info.param); });
+INSTANTIATE_TEST_SUITE_P(ForceModels, ContactEnergyStudy,
                          ::testing::Values(contact::ForceModel::centroid, contact::ForceModel::gradient,
                                            contact::ForceModel::foundation),
                          [](const auto& info) { return name_of(info.param); });
