@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -11,6 +12,7 @@
 
 #include "dynamics/world.h"
 #include "formats/hdf5_file.h"
+#include "io/xdmf_frames.h"
 
 namespace polyfloe::io {
 
@@ -62,7 +64,7 @@ struct Hdf5Writer::Impl {
   Dataset vertices_xy;                // [T, V, 2] float32: the polygons where they are (for results.xmf)
   std::vector<double> body_xy;        // body-frame vertices, as floes/polygon_xy
   std::vector<std::int64_t> offsets;  // as floes/polygon_offsets
-  std::uint64_t topology_size = 0;    // entries of floes/xdmf_topology
+  std::optional<XdmfFrames> xdmf;     // results.xmf and the files of its frames
   std::vector<float> row_xy;
   Dataset kinetic_energy, contact_count, max_speed, mean_speed, max_overlap_depth, linear_momentum, angular_momentum;
   std::vector<Dataset> extra;
@@ -150,9 +152,7 @@ struct Hdf5Writer::Impl {
       topology.push_back(offsets[k + 1] - offsets[k]);
       for (std::int64_t v = offsets[k]; v < offsets[k + 1]; ++v) topology.push_back(v);
     }
-    topology_size = topology.size();
-    d = floes.write_dataset<std::int64_t>("xdmf_topology", topology);
-    units(d, "1", "the polygons for results.xmf: per body 3 (XDMF polygon), its vertex count, its vertex rows");
+    xdmf.emplace(XdmfFrames::Bodies{ids, std::move(thickness), std::move(motion), std::move(topology), xy.size() / 2});
     body_xy = std::move(xy);
   }
 
@@ -416,53 +416,9 @@ void Hdf5Writer::adopt_frames(const std::filesystem::path& previous, int frames)
   impl_->file.flush();
 }
 
-void Hdf5Writer::write_xdmf(const std::filesystem::path& xmf) {
+void Hdf5Writer::write_xdmf(const std::filesystem::path& xmf, OutputManifest* manifest) {
   impl_->file.flush();
-  const std::vector<double> times = impl_->time.read<double>();
-  const std::uint64_t n = impl_->bodies, v = impl_->body_xy.size() / 2, t = times.size();
-  const std::string h5 = impl_->file.path().filename().string() + ":";
-  std::ostringstream x;
-  x.precision(17);
-  auto item = [&](const std::string& dims, const char* type, int precision, const std::string& path) {
-    x << "<DataItem Dimensions=\"" << dims << "\" NumberType=\"" << type << "\" Precision=\"" << precision
-      << "\" Format=\"HDF\">" << h5 << path << "</DataItem>";
-  };
-  // Frame k of a [T, rows, cols] series.
-  auto slab = [&](std::uint64_t k, std::uint64_t rows, std::uint64_t cols, const char* type, int precision,
-                  const std::string& path) {
-    x << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << rows << " " << cols << "\">"
-      << "<DataItem Dimensions=\"3 3\" Format=\"XML\">" << k << " 0 0 1 1 1 1 " << rows << " " << cols << "</DataItem>";
-    item(std::to_string(t) + " " + std::to_string(rows) + " " + std::to_string(cols), type, precision, path);
-    x << "</DataItem>";
-  };
-  auto attribute = [&](const char* name, const char* kind, const char* units, auto&& data) {
-    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << kind << "\" Center=\"Cell\">"
-      << "<Information Name=\"units\" Value=\"" << units << "\"/>";
-    data();
-    x << "</Attribute>\n";
-  };
-  x << "<?xml version=\"1.0\" ?>\n<!-- PolyFloe: the frames of " << impl_->file.path().filename().string()
-    << " for ParaView (File > Open, \"XDMF Reader\"); written with each checkpoint, at the end of the run and when"
-       " it stops early -->\n"
-    << "<Xdmf Version=\"2.0\">\n<Domain>\n<Grid Name=\"floes\" GridType=\"Collection\" "
-       "CollectionType=\"Temporal\">\n";
-  for (std::uint64_t k = 0; k < t; ++k) {
-    x << "  <Grid Name=\"frame " << k << "\" GridType=\"Uniform\">\n    <Time Value=\"" << times[k] << "\"/>\n"
-      << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << n << "\">";
-    item(std::to_string(impl_->topology_size), "Int", 8, "/floes/xdmf_topology");
-    x << "</Topology>\n    <Geometry GeometryType=\"XY\">";
-    slab(k, v, 2, "Float", 4, "/state/vertices_xy");
-    x << "</Geometry>\n";
-    attribute("velocity", "Vector", "m/s", [&] { slab(k, n, 3, "Float", 8, "/state/velocity"); });
-    attribute("angular_velocity", "Vector", "rad/s", [&] { slab(k, n, 3, "Float", 8, "/state/angular_velocity"); });
-    attribute("id", "Scalar", "1", [&] { item(std::to_string(n), "UInt", 8, "/floes/id"); });
-    attribute("thickness", "Scalar", "m", [&] { item(std::to_string(n), "Float", 8, "/floes/thickness"); });
-    attribute("motion", "Scalar", "1 (0 dynamic, 1 fixed, 2 kinematic)",
-              [&] { item(std::to_string(n), "Char", 1, "/floes/motion"); });
-    x << "  </Grid>\n";
-  }
-  x << "</Grid>\n</Domain>\n</Xdmf>\n";
-  write_file_atomic(xmf, x.str());
+  impl_->xdmf->write(impl_->file.root(), impl_->file.path().filename().string(), xmf, manifest);
 }
 
 void Hdf5Writer::start_swmr() { impl_->start_swmr(); }

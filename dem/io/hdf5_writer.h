@@ -4,7 +4,6 @@
 //   /floes/id [N] uint64, thickness [N] [m], mass [N] [kg], inertia [N] [kg m^2], motion [N] int8
 //          (0 dynamic, 1 fixed, 2 kinematic), polygon_offsets [N+1] int64, polygon_xy [V,2] [m]
 //          (body-frame vertices of body i: rows polygon_offsets[i] .. polygon_offsets[i+1]-1, counter-clockwise)
-//          xdmf_topology [L] int64 (the polygons for results.xmf: per body 3, its vertex count, its vertex rows)
 //   /state/position [T,N,3] [m]                centre of mass; z = h/2 - draft
 //          orientation [T,N,4]                 unit quaternion (w, x, y, z) = (cos(yaw/2), 0, 0, sin(yaw/2))
 //          velocity [T,N,3] [m/s], angular_velocity [T,N,3] [rad/s] (0, 0, omega)
@@ -37,6 +36,8 @@ class World;
 }
 
 namespace polyfloe::io {
+
+class OutputManifest;
 
 struct RunInfo {
   std::string scene_path;  // the scene file as given
@@ -82,10 +83,14 @@ class Hdf5Writer {
   void adopt_frames(const std::filesystem::path& previous, int frames);
   // Writes `xmf` (atomically): an XDMF 2 description of the file's frames so far as a temporal collection of the
   // bodies' polygons (state/vertices_xy) with their cell data (velocity, angular velocity, id, thickness, motion;
-  // units as Information items), for ParaView's "XDMF Reader" (its Xdmf3 readers fail on a hyperslab of the
-  // geometry). References this file by its name, relative to the folder of `xmf` (keep them side by side).
-  // Throws IoError naming the file.
-  void write_xdmf(const std::filesystem::path& xmf);
+  // units as Information items), which every XDMF reader of ParaView reads (its Xdmf3 readers drop a hyperslab of
+  // a series and crash on a geometry without data, so every array is a whole dataset). The arrays live in files
+  // of their own beside `xmf`, xdmf/frames_FIRST-LAST.h5, one per call with the frames written since the last
+  // (each written atomically, never changed after: results.xmf opens while the run goes on). With `manifest`
+  // (the output folder's), they are listed in it; a restarted run keeps the interrupted run's files of the frames
+  // it adopted (checked against their times) and removes the others once the new results.xmf is written. Throws
+  // IoError naming the file.
+  void write_xdmf(const std::filesystem::path& xmf, OutputManifest* manifest = nullptr);
   // The /diagnostics group, for series the driver writes itself: append their row for a frame before
   // write_frame(), which flushes the file.
   hdf5::Group& diagnostics();

@@ -62,6 +62,7 @@ BasicRunOutputs<W>::BasicRunOutputs(const scene::Scene& scene, const W& world, c
   if (restart) {  // what the interrupted writers left half-made (the frame folders: VtkSeriesWriter::resume)
     manifest.remove_temporaries("");
     manifest.remove_temporaries("checkpoints/");
+    manifest.remove_temporaries("xdmf/");
   }
   manifest.record("scene.resolved.yaml");
   io::write_file_atomic(out / "scene.resolved.yaml", scene::resolved_yaml(scene_));
@@ -120,7 +121,7 @@ BasicRunOutputs<W>::~BasicRunOutputs() {
 
 template <class W>
 void BasicRunOutputs<W>::write_xdmf() {
-  if constexpr (kPlanar) h5_->write_xdmf(folder_.path() / "results.xmf");
+  if constexpr (kPlanar) h5_->write_xdmf(folder_.path() / "results.xmf", &folder_.manifest());
 }
 
 template <class W>

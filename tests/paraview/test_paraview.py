@@ -4,7 +4,11 @@ process, once on 2 MPI ranks with its VTK frames in per-rank pieces) and of the 
 compression, each picture script of postprocess/paraview/ rendered by ParaView's own pvbatch (scripts/pvbatch.sh, on
 a virtual display), each picture checked by its pixels (not blank: coloured floes, arrows, cracks), each state file
 loaded by pvbatch against the other folder (the pieces) and checked to draw the same picture, the first frame's
-arrays as ParaView reads them, frame times on the interval's multiples, and an animation.
+arrays as ParaView reads them, frame times on the interval's multiples, and an animation. results.xmf of the
+channel, of the compression and of a channel run on 2 ranks killed after its second checkpoint and restarted on 3:
+opened by OpenDataFile (the GUI's choice) and by each XDMF reader by name (Xdmf3ReaderS, Xdmf3ReaderT,
+XDMFReader), each in a pvbatch of its own, every frame's time, cell count and one floe's first vertex and velocity
+equal to results.h5's.
 
     /usr/bin/python3 tests/paraview/test_paraview.py --build build [--keep]
 
@@ -24,6 +28,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 PVBATCH = os.path.join(ROOT, "scripts", "pvbatch.sh")
 PICTURES = os.path.join(ROOT, "postprocess", "paraview")
 CHECK = os.path.join(ROOT, "tests", "paraview", "check_image.py")
+sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
+from kill_run import killed_after  # noqa: E402
 failures = []
 
 
@@ -46,6 +52,46 @@ def image(png, *args):
                        text=True)
     print(p.stdout.rstrip())
     check(p.returncode == 0, f"{os.path.basename(png)} {' '.join(args)}")
+
+
+def check_xdmf(folder):
+    """Opens FOLDER/results.xmf with OpenDataFile and with each XDMF reader by name, in a pvbatch of its own each:
+    every frame's time and cell count, and one dynamic floe's first vertex and velocity, equal to results.h5's."""
+    import h5py
+    import numpy as np
+    with h5py.File(f"{folder}/results.h5", "r") as f:
+        times = f["time"][()].tolist()
+        ids = f["floes/id"][()]
+        dynamic = np.flatnonzero(f["floes/motion"][()] == 0)
+        k = int(dynamic[len(dynamic) // 2])  # a floe in the middle of the dynamic ones, in id order
+        first = int(f["floes/polygon_offsets"][k])
+        xy = f["state/vertices_xy"][:, first, :].astype(np.float64)
+        velocity = f["state/velocity"][:, k, :]
+    body = int(ids[k])
+    name = os.path.basename(folder)
+    for reader in ("open", "Xdmf3ReaderS", "Xdmf3ReaderT", "XDMFReader"):
+        p = subprocess.run(["bash", PVBATCH, os.path.join(ROOT, "tests", "paraview", "xdmf_frames.py"),
+                            f"{folder}/results.xmf", reader, str(body)], stdout=subprocess.PIPE,
+                           stderr=subprocess.STDOUT, text=True, cwd=ROOT)
+        lines = [line for line in p.stdout.splitlines() if line.startswith("{")]
+        what = f"{name}/results.xmf with {reader}"
+        if p.returncode != 0 or not lines:
+            print(p.stdout[-3000:])
+            check(False, f"{what}: pvbatch exit {p.returncode}")
+            continue
+        got = json.loads(lines[-1])
+        frames = got["frames"]
+        check([fr["time"] for fr in frames] == times, f"{what} ({got['reader']}): frame times {len(frames)} = "
+              f"results.h5's {len(times)}")
+        check(all(fr["cells"] == len(ids) for fr in frames), f"{what}: {len(ids)} polygons at every frame")
+        check({"velocity", "angular_velocity", "id", "thickness", "motion"} <= set(got["arrays"]),
+              f"{what}: cell arrays {got['arrays']}")
+        same = len(frames) == len(times) and all(
+            fr["point"] is not None and fr["velocity"] is not None and fr["point"][:2] == xy[t].tolist() and
+            fr["velocity"] == velocity[t].tolist() for t, fr in enumerate(frames))
+        check(same and np.any(velocity[-1] != 0.0), f"{what}: floe {body}'s first vertex and velocity equal "
+              f"results.h5's at every frame (last: {frames[-1]['point'][:2] if frames and frames[-1]['point'] else None}"
+              f" vs {xy[-1].tolist()}, {frames[-1]['velocity'] if frames else None} vs {velocity[-1].tolist()})")
 
 
 def pvbatch(script, *args):
@@ -72,6 +118,13 @@ def main():
               open(f"{work}/b/floes.pvd").read(), "the 2-rank run's floes.pvd lists .pvtp frames of 2 pieces")
         run([polyfloe, "run", "dem/scenes/uniaxial_compression.yaml", "--set", "run.duration=1.1", "--set",
              "output.interval=0.1", "-o", f"{work}/sheet"], "the uniaxial compression run")
+        # On 2 ranks, killed (SIGKILL to every rank) after its second checkpoint, restarted on 3 ranks.
+        mpi = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_WAIT_POLICY=passive", "-np"]
+        restarted = [polyfloe, *channel, "--set", "run.duration=10", "--set", "output.checkpoint.every=1", "-o",
+                     f"{work}/restarted"]
+        check(killed_after(mpi + ["2"] + restarted, None, f"{work}/restarted", 2, cwd=ROOT),
+              "the 2-rank channel run was killed after its second checkpoint")
+        run(mpi + ["3"] + restarted + ["--restart", f"{work}/restarted"], "the restart on 3 ranks")
 
         # Frame times: the interval's multiples, exactly.
         pvd = open(f"{work}/a/floes.pvd").read()
@@ -94,24 +147,9 @@ def main():
         check({"speed", "ice_fraction", "velocity"} <= seen.get("velocity", (0, set()))[1],
               "velocity.pvd's first frame offers speed, ice_fraction, velocity")
 
-        # results.xmf: ParaView's XDMF Reader reads the HDF5 time series, frame for frame.
-        out = run(["bash", PVBATCH, os.path.join(ROOT, "tests", "paraview", "xdmf_frames.py"), f"{work}/a/results.xmf"],
-                  "xdmf_frames.py")
-        xdmf = json.loads([line for line in out.splitlines() if line.startswith("{")][-1])
-        check(xdmf["times"] == [float(t) for t in times], f"results.xmf frame times {xdmf['times']}")
-        h5 = run(["/usr/bin/python3", "-c", "import h5py, json, sys; f = h5py.File(sys.argv[1], 'r'); "
-                  "k = int(sys.argv[2]); first = int(f['floes/polygon_offsets'][k]); "
-                  "print(json.dumps({'n': len(f['floes/id']), 'xy': f['state/vertices_xy'][-1, first].tolist(), "
-                  "'v': f['state/velocity'][-1, k].tolist()}))", f"{work}/a/results.h5", str(xdmf["body"])],
-                 "reading results.h5")
-        h5 = json.loads(h5)
-        check(xdmf["cells"] == h5["n"], f"results.xmf: {xdmf['cells']} polygons, results.h5 {h5['n']} bodies")
-        check({"velocity", "angular_velocity", "id", "thickness", "motion"} <= set(xdmf["arrays"]),
-              f"results.xmf cell arrays {xdmf['arrays']}")
-        check(max(abs(a - b) for a, b in zip(xdmf["point"][:2], h5["xy"])) < 1e-9 and h5["v"] != [0.0, 0.0, 0.0] and
-              max(abs(a - b) for a, b in zip(xdmf["velocity"], h5["v"])) < 1e-12,
-              f"results.xmf's last frame is results.h5's (body {xdmf['body']}): first vertex {xdmf['point'][:2]} vs {h5['xy']}, "
-              f"velocity {xdmf['velocity']} vs {h5['v']}")
+        # results.xmf: every XDMF reader of ParaView, each in a process of its own, reads results.h5's frames.
+        for folder in (f"{work}/a", f"{work}/sheet", f"{work}/restarted"):
+            check_xdmf(folder)
 
         pics = f"{work}/pictures"
         out = pvbatch("channel.py", f"{work}/a", "-o", pics, "--animation")

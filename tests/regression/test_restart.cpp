@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -459,4 +460,60 @@ TEST(Restart, UnstableRunLeavesItsStateForInspection) {
   EXPECT_NE(slurp(out.string() + ".log").find("for inspection"), std::string::npos);
   fs::remove_all(out);
   fs::remove(out.string() + ".log");
+}
+
+TEST(Restart, ResultsXmfNamesTheFramesOfTheRestartedRunOnly) {
+  // results.xmf's frames are in xdmf/frames_FIRST-LAST.h5, one file per checkpoint. A restart from an older
+  // checkpoint keeps the files of the frames it adopts whose times match results.h5 (here the second file's time
+  // is spoiled first, so it and everything after it are rewritten), and removes the files the new results.xmf
+  // does not name.
+  const fs::path dir = scratch("xdmf_restart");
+  fs::remove_all(dir);
+  const std::vector<std::string> args = {"run",   kSource + "/dem/scenes/channel.yaml",
+                                         "--set", "run.duration=2",
+                                         "--set", "output.interval=0.25",
+                                         "--set", "output.checkpoint.every=2",
+                                         "--set", "output.checkpoint.keep=10",
+                                         "-o",    dir.string()};
+  ASSERT_EQ(run_to_end(args, dir.string() + ".log"), 0) << slurp(dir.string() + ".log");
+  {
+    File f(dir / "xdmf/frames_000002-000003.h5", File::Mode::read_write);
+    Dataset t = f.root().open_dataset("time");
+    std::vector<double> times = t.read<double>();
+    times[0] = -1.0;
+    t.write<double>(times);
+  }
+  std::vector<std::string> restart = args;
+  restart.insert(restart.end(), {"--restart", (dir / "checkpoints/checkpoint_000004.h5").string()});
+  ASSERT_EQ(run_to_end(restart, dir.string() + ".log"), 0) << slurp(dir.string() + ".log");
+
+  std::vector<std::string> on_disk;
+  for (const auto& e : fs::directory_iterator(dir / "xdmf")) on_disk.push_back(e.path().filename().string());
+  std::sort(on_disk.begin(), on_disk.end());
+  EXPECT_EQ(on_disk, (std::vector<std::string>{"frames_000000-000001.h5", "frames_000002-000005.h5",
+                                               "frames_000006-000007.h5", "frames_000008-000008.h5"}));
+  const std::string xmf = slurp(dir / "results.xmf");
+  std::set<std::string> named;
+  for (std::size_t at = xmf.find("xdmf/frames_"); at != std::string::npos; at = xmf.find("xdmf/frames_", at + 1))
+    named.insert(xmf.substr(at + 5, xmf.find(':', at) - at - 5));
+  EXPECT_EQ(named, std::set<std::string>(on_disk.begin(), on_disk.end()));
+  // Every frame as results.h5 holds it: time and velocity, bit for bit.
+  const File results(dir / "results.h5", File::Mode::read_only);
+  const std::vector<double> times = results.root().open_dataset("time").read<double>();
+  const Dataset velocity = results.root().open_dataset("state/velocity");
+  std::size_t frames = 0;
+  for (const std::string& name : on_disk) {
+    const File view(dir / "xdmf" / name, File::Mode::read_only);
+    const std::vector<double> t = view.root().open_dataset("time").read<double>();
+    const int first = std::stoi(name.substr(7, 6));
+    for (std::size_t k = 0; k < t.size(); ++k, ++frames) {
+      ASSERT_LT(first + k, times.size());
+      EXPECT_EQ(t[k], times[first + k]) << name;
+      char group[32];
+      std::snprintf(group, sizeof group, "frames/%06zu/velocity", first + k);
+      EXPECT_EQ(view.root().open_dataset(group).read<double>(), velocity.read_rows<double>(first + k, 1)) << name;
+    }
+  }
+  EXPECT_EQ(frames, times.size());
+  fs::remove_all(dir);
 }

@@ -121,6 +121,24 @@ inline void expect_same_run(const fs::path& a, const fs::path& b) {
   for (const std::string& f : fa) EXPECT_TRUE(slurp(a / f) == slurp(b / f)) << f << " differs";
   for (const char* pvd : {"floes.pvd", "bodies.pvd", "contacts.pvd", "bonds.pvd", "velocity.pvd"})
     EXPECT_EQ(slurp(a / pvd), slurp(b / pvd)) << pvd;
+  // results.xmf and the files of its frames (a restart keeps the interrupted run's files of the frames it adopts,
+  // rewrites the rest and removes what the new results.xmf does not name): the same names, the same bits.
+  EXPECT_EQ(fs::exists(a / "results.xmf"), fs::exists(b / "results.xmf"));
+  if (fs::exists(a / "results.xmf")) {
+    EXPECT_EQ(slurp(a / "results.xmf"), slurp(b / "results.xmf"));
+  }
+  const auto xdmf_files = [](const fs::path& dir) {
+    std::vector<std::string> out;
+    if (fs::is_directory(dir / "xdmf"))
+      for (const auto& e : fs::directory_iterator(dir / "xdmf")) out.push_back("xdmf/" + e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const auto xa = xdmf_files(a), xb = xdmf_files(b);
+  EXPECT_EQ(xa, xb);
+  if (xa == xb) {
+    for (const std::string& f : xa) EXPECT_TRUE(datasets(a / f) == datasets(b / f)) << f << " differs";
+  }
   // The final state, including what no output shows (forces, drift loads, spring history, bond stresses): every
   // field of the state (dynamics/state_fields.h), planar or spatial, as bytes.
   const auto ca = run::read_checkpoint(run::find_checkpoint(a));
