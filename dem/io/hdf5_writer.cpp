@@ -413,6 +413,7 @@ void Hdf5Writer::adopt_frames(const std::filesystem::path& previous, int frames)
   const hdf5::File old(previous, hdf5::File::Mode::read_only);
   impl_->file.root().append_series_rows_from(old.root(), static_cast<std::uint64_t>(frames));
   impl_->frames = frames;
+  impl_->xdmf->adopt(frames);
   impl_->file.flush();
 }
 

@@ -86,10 +86,10 @@ class Hdf5Writer {
   // units as Information items), which every XDMF reader of ParaView reads (its Xdmf3 readers drop a hyperslab of
   // a series and crash on a geometry without data, so every array is a whole dataset). The arrays live in files
   // of their own beside `xmf`, xdmf/frames_FIRST-LAST.h5, one per call with the frames written since the last
-  // (each written atomically, never changed after: results.xmf opens while the run goes on). With `manifest`
-  // (the output folder's), they are listed in it; a restarted run keeps the interrupted run's files of the frames
-  // it adopted (checked against their times) and removes the others once the new results.xmf is written. Throws
-  // IoError naming the file.
+  // (io/xdmf_frames.h: each written atomically, and results.xmf opens while the run goes on). With `manifest`
+  // (the output folder's), they are listed in it; a restarted run keeps the interrupted run's files that hold only
+  // frames it adopted (checked against their times) and rewrites or removes the others. Throws IoError naming the
+  // file.
   void write_xdmf(const std::filesystem::path& xmf, OutputManifest* manifest = nullptr);
   // The /diagnostics group, for series the driver writes itself: append their row for a frame before
   // write_frame(), which flushes the file.

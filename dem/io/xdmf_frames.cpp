@@ -48,8 +48,9 @@ std::optional<std::pair<int, int>> view_range(const std::string& name) {
 
 }  // namespace
 
-// The view files of an interrupted run (this folder's manifest lists them) that hold frames this run adopted,
-// each checked against results.h5's times, are kept from frame 0 on without a gap; the others are stale.
+// The view files of an interrupted run (this folder's manifest lists them) that hold only frames this run adopted
+// (frames past the checkpoint it continues from were computed anew, even where their times match), each checked
+// against results.h5's times, are kept from frame 0 on without a gap; the others are stale.
 void XdmfFrames::scan(const std::filesystem::path& folder, OutputManifest* manifest, const std::vector<double>& times) {
   scanned_ = true;
   if (manifest == nullptr) return;
@@ -62,7 +63,7 @@ void XdmfFrames::scan(const std::filesystem::path& folder, OutputManifest* manif
   std::sort(listed.begin(), listed.end());
   for (const auto& [range, entry] : listed) {
     const auto [first, last] = range;
-    bool keep = first == (batches_.empty() ? 0 : batches_.back().last + 1) && last < static_cast<int>(times.size()) &&
+    bool keep = first == (batches_.empty() ? 0 : batches_.back().last + 1) && last < adopted_ &&
                 std::filesystem::is_regular_file(folder / entry);
     if (keep) {
       try {

@@ -463,9 +463,10 @@ TEST(Restart, UnstableRunLeavesItsStateForInspection) {
 }
 
 TEST(Restart, ResultsXmfNamesTheFramesOfTheRestartedRunOnly) {
-  // results.xmf's frames are in xdmf/frames_FIRST-LAST.h5, one file per checkpoint. A restart from an older
-  // checkpoint keeps the files of the frames it adopts whose times match results.h5 (here the second file's time
-  // is spoiled first, so it and everything after it are rewritten), and removes the files the new results.xmf
+  // results.xmf's frames are in xdmf/frames_FIRST-LAST.h5, one file per checkpoint. A restart keeps the files that
+  // hold only frames it adopted, where their times match results.h5's (here the second file's time is spoiled
+  // first, so it and everything after it are rewritten), writes anew those of frames past its checkpoint (a
+  // second restart with another step: the same times, other states), and removes the files the new results.xmf
   // does not name.
   const fs::path dir = scratch("xdmf_restart");
   fs::remove_all(dir);
@@ -483,37 +484,47 @@ TEST(Restart, ResultsXmfNamesTheFramesOfTheRestartedRunOnly) {
     times[0] = -1.0;
     t.write<double>(times);
   }
-  std::vector<std::string> restart = args;
-  restart.insert(restart.end(), {"--restart", (dir / "checkpoints/checkpoint_000004.h5").string()});
-  ASSERT_EQ(run_to_end(restart, dir.string() + ".log"), 0) << slurp(dir.string() + ".log");
-
-  std::vector<std::string> on_disk;
-  for (const auto& e : fs::directory_iterator(dir / "xdmf")) on_disk.push_back(e.path().filename().string());
-  std::sort(on_disk.begin(), on_disk.end());
-  EXPECT_EQ(on_disk, (std::vector<std::string>{"frames_000000-000001.h5", "frames_000002-000005.h5",
-                                               "frames_000006-000007.h5", "frames_000008-000008.h5"}));
-  const std::string xmf = slurp(dir / "results.xmf");
-  std::set<std::string> named;
-  for (std::size_t at = xmf.find("xdmf/frames_"); at != std::string::npos; at = xmf.find("xdmf/frames_", at + 1))
-    named.insert(xmf.substr(at + 5, xmf.find(':', at) - at - 5));
-  EXPECT_EQ(named, std::set<std::string>(on_disk.begin(), on_disk.end()));
-  // Every frame as results.h5 holds it: time and velocity, bit for bit.
-  const File results(dir / "results.h5", File::Mode::read_only);
-  const std::vector<double> times = results.root().open_dataset("time").read<double>();
-  const Dataset velocity = results.root().open_dataset("state/velocity");
-  std::size_t frames = 0;
-  for (const std::string& name : on_disk) {
-    const File view(dir / "xdmf" / name, File::Mode::read_only);
-    const std::vector<double> t = view.root().open_dataset("time").read<double>();
-    const int first = std::stoi(name.substr(7, 6));
-    for (std::size_t k = 0; k < t.size(); ++k, ++frames) {
-      ASSERT_LT(first + k, times.size());
-      EXPECT_EQ(t[k], times[first + k]) << name;
-      char group[32];
-      std::snprintf(group, sizeof group, "frames/%06zu/velocity", first + k);
-      EXPECT_EQ(view.root().open_dataset(group).read<double>(), velocity.read_rows<double>(first + k, 1)) << name;
+  auto restart_from = [&](const char* checkpoint, std::vector<std::string> extra) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), extra.begin(), extra.end());
+    a.insert(a.end(), {"--restart", (dir / "checkpoints" / checkpoint).string()});
+    return run_to_end(a, dir.string() + ".log");
+  };
+  // The folder's xdmf/ files, named by results.xmf, every frame as results.h5 holds it (time and velocity, bit
+  // for bit).
+  auto expect_frames_of_results = [&](const std::vector<std::string>& expected) {
+    std::vector<std::string> on_disk;
+    for (const auto& e : fs::directory_iterator(dir / "xdmf")) on_disk.push_back(e.path().filename().string());
+    std::sort(on_disk.begin(), on_disk.end());
+    EXPECT_EQ(on_disk, expected);
+    const std::string xmf = slurp(dir / "results.xmf");
+    std::set<std::string> named;
+    for (std::size_t at = xmf.find("xdmf/frames_"); at != std::string::npos; at = xmf.find("xdmf/frames_", at + 1))
+      named.insert(xmf.substr(at + 5, xmf.find(':', at) - at - 5));
+    EXPECT_EQ(named, std::set<std::string>(on_disk.begin(), on_disk.end()));
+    const File results(dir / "results.h5", File::Mode::read_only);
+    const std::vector<double> times = results.root().open_dataset("time").read<double>();
+    const Dataset velocity = results.root().open_dataset("state/velocity");
+    std::size_t frames = 0;
+    for (const std::string& name : on_disk) {
+      const File view(dir / "xdmf" / name, File::Mode::read_only);
+      const std::vector<double> t = view.root().open_dataset("time").read<double>();
+      const int first = std::stoi(name.substr(7, 6));
+      for (std::size_t k = 0; k < t.size(); ++k, ++frames) {
+        ASSERT_LT(first + k, times.size());
+        EXPECT_EQ(t[k], times[first + k]) << name;
+        char group[32];
+        std::snprintf(group, sizeof group, "frames/%06zu/velocity", first + k);
+        EXPECT_EQ(view.root().open_dataset(group).read<double>(), velocity.read_rows<double>(first + k, 1)) << name;
+      }
     }
-  }
-  EXPECT_EQ(frames, times.size());
+    EXPECT_EQ(frames, times.size());
+  };
+  ASSERT_EQ(restart_from("checkpoint_000004.h5", {}), 0) << slurp(dir.string() + ".log");
+  expect_frames_of_results(
+      {"frames_000000-000001.h5", "frames_000002-000005.h5", "frames_000006-000007.h5", "frames_000008-000008.h5"});
+  ASSERT_EQ(restart_from("checkpoint_000006.h5", {"--set", "run.dt=4e-4"}), 0) << slurp(dir.string() + ".log");
+  expect_frames_of_results(
+      {"frames_000000-000001.h5", "frames_000002-000005.h5", "frames_000006-000007.h5", "frames_000008-000008.h5"});
   fs::remove_all(dir);
 }
