@@ -150,6 +150,10 @@ struct DampingStep {
   // 1 - inverse_mass c (dt/2 - tau)/2 for the approach rate's fall under the damping over that time (the mean
   // rate over it against the rate now).
   double since_entry = -1.0;
+  // The power p of the approach in the damping force as the contact begins (damping ∝ x^p x_dot): the impulse it
+  // missed since the entry is then (dt/2 + tau)^(1+p) / ((1 + p) tau^p dt) times the step's (p = 0: a law linear
+  // at entry, the foundation model's flat face; 1/4 the speed-independent Hertz damping, 1/2 the paper's).
+  double entry_power = 0.0;
 };
 
 class ContactLaw {
@@ -185,12 +189,43 @@ class ContactLaw {
                                   const DampingStep& step) const {
     ContactForce f;
     const double root = stiffness / (1.5 * c.k_n);  // d^0.5 of the Hertz contact of this stiffness
-    double damping = s_.damping == DampingModel::paper ? c.damping * root
-                                                       : power_damping(exponent) * std::sqrt(c.m_star * stiffness);
+    const double damping = s_.damping == DampingModel::paper
+                               ? c.damping * root
+                               : power_damping(exponent) * std::sqrt(c.m_star * stiffness);
+    f.normal = stepped_normal(elastic, damping, rate, dt, step);
+    friction(c.mu, c.k_s * root, slip_velocity, spring, dt, f);
+    return f;
+  }
+  // The Hertz law of evaluate() (F_e = k_n d^1.5, the same tangential spring) for a depth d that grows at `slope`
+  // = dd/dx with the coordinate x whose rate `rate` is, along which the pair's effective mass is `mass_ratio` m*:
+  // the damping drives x's impact to the target restitution. In x the contact is Hertz with stiffness
+  // k_n slope^1.5, so the damping force is c d^p x_dot scaled by sqrt(slope mass_ratio) (speed-independent, p =
+  // 1/4) or (slope mass_ratio)^0.4 (paper, p = 1/2); evaluate() is slope = mass_ratio = 1 without `step`. The
+  // centroid force model: x the approach along the normal, slope 1 for faces, 1/2 for a corner in a face (the
+  // overlap's area over its chord grows at half the corner's penetration), mass_ratio 1. The gradient model: x
+  // the depth itself (slope 1), mass_ratio 1/|dd/dx_b|^2. `step`: as evaluate_stiffness's.
+  ContactForce evaluate_hertz(const PairCoefficients& c, double depth, double slope, double mass_ratio, double rate,
+                              double slip_velocity, double spring, double dt, const DampingStep& step) const {
+    ContactForce f;
+    const double sqrt_d = std::sqrt(depth);
+    const double scale = slope * mass_ratio;
+    const double damping = s_.damping == DampingModel::paper ? c.damping * sqrt_d * std::pow(scale, 0.4)
+                                                             : c.damping * std::sqrt(sqrt_d * scale);
+    f.normal = stepped_normal(c.k_n * depth * sqrt_d, damping, rate, dt, step);
+    friction(c.mu, c.k_s * sqrt_d, slip_velocity, spring, dt, f);
+    return f;
+  }
+
+ private:
+  // The normal force elastic + damping rate (>= 0) with the damping met with the step as `step` says.
+  static double stepped_normal(double elastic, double damping, double rate, double dt, const DampingStep& step) {
     const double w = step.inverse_mass;
     if (step.since_entry >= 0.0) {
       const double h = 0.5 * dt, tau = std::min(step.since_entry, dt);
-      damping *= (h + tau) / dt * std::max(0.0, 1.0 - 0.5 * w * damping * (h - tau));
+      double missed = (h + tau) / dt;
+      if (step.entry_power > 0.0 && tau > 0.0)
+        missed *= std::pow((h + tau) / tau, step.entry_power) / (1.0 + step.entry_power);
+      damping *= missed * std::max(0.0, 1.0 - 0.5 * w * damping * (h - tau));
     }
     if (w > 0.0 && std::isfinite(step.last_normal)) {
       const double response = 0.5 * dt * w;
@@ -199,12 +234,9 @@ class ContactLaw {
       // less the last force's share.
       rate = elastic + damping * at_end >= 0.0 ? at_end : rate + response * step.last_normal;
     }
-    f.normal = std::max(0.0, elastic + damping * rate);
-    friction(c.mu, c.k_s * root, slip_velocity, spring, dt, f);
-    return f;
+    return std::max(0.0, elastic + damping * rate);
   }
 
- private:
   // power_law_damping(e, n) / sqrt(n - 1) for this law's e, interpolated in n over [2, 3.5] (clamped there).
   double power_damping(double n) const {
     const double x = std::clamp((n - 2.0) / kPowerStep, 0.0, static_cast<double>(kPowerPoints - 1));

@@ -406,6 +406,7 @@ bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origi
   out.ga = out.gb = Vec2{0.0, 0.0};
   out.ha = out.hb = 0.0;
   out.energy = out.load_moment = out.extent = out.breadth = 0.0;
+  out.slope = 1.0;
   out.load = Vec2{0.0, 0.0};
   auto foundation = [&] {
     const detail::FoundationTerms f = detail::foundation_terms(a, b, origin, cur->p, cur->edge, n, g);
@@ -440,6 +441,23 @@ bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origi
   const double coords = std::max({origin.cwiseAbs().maxCoeff(), p0.cwiseAbs().maxCoeff(), scale});
   if (!(out.depth > 64.0 * std::numeric_limits<double>::epsilon() * coords)) return false;
   if (terms == OverlapTerms::foundation) foundation();
+  if (terms == OverlapTerms::basic) {
+    // The depth's slope: the chord's rate of growth with the approach (gb . normal, as the gradient terms below take
+    // it, but every crossing of edges that are not parallel counts: a wedge of nearly parallel faces crosses fast
+    // but bounds a thin overlap, S/L^2 dL/dx stays of order 1), kept to [1/4, 4] against round-off.
+    double gbn = 0.0;
+    for (int k = 0, in = cur->edge[n - 1]; k < n; in = cur->edge[k++]) {
+      const int outgoing = cur->edge[k];
+      if ((in < na) == (outgoing < na)) continue;
+      const bool exit = in < na;
+      const Vec2 n_a = a_normal(exit ? in : outgoing), n_b = b_normal((exit ? outgoing : in) - na);
+      const double det = cross(n_a, n_b);
+      if (det == 0.0) continue;
+      const double rate = cross(out.normal, geometry::perp_left(n_a)) * n_b.dot(out.normal) / det;
+      gbn += exit ? rate : -rate;
+    }
+    out.slope = std::clamp(1.0 + out.area / (len * len) * gbn, 0.25, 4.0);
+  }
   if (terms != OverlapTerms::depth_gradient) return true;
   // Gradient terms: the moment of the ∂A part (averaged with minus the ∂B part) and the sliding crossings.
   double m_a = 0.0, m_b = 0.0;
@@ -476,24 +494,6 @@ bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origi
 double separation_lower_bound(std::span<const Vec2> a, std::span<const Vec2> b) {
   Vec2 axis;
   return max_separation(a, b, axis);
-}
-
-DepthGradient depth_gradient(const PlanarContact& g, const Vec2& x_a, const Vec2& x_b) {
-  DepthGradient d;
-  const Vec2 da = x_a - g.point, db = x_b - g.point;  // body centres relative to the centroid
-  if (g.chord > 0.0) {
-    // depth = S/L: d(depth) = dS/L - S/L^2 dL, with dS/dv_b = -N and dS/dw_b = -(M - cross(x_b - c, N)).
-    const double inv_l = 1.0 / g.chord, s_l2 = g.area * inv_l * inv_l;
-    const Vec2 n_vec = g.chord * g.normal;
-    d.grad_b = -g.normal - s_l2 * g.gb;
-    d.grad_wb = -(g.moment - cross(db, n_vec)) * inv_l - s_l2 * (g.hb - cross(db, g.gb));
-  } else {
-    d.grad_b = -g.normal;
-    d.grad_wb = cross(db, g.normal);
-  }
-  d.grad_a = -d.grad_b;
-  d.grad_wa = -d.grad_wb + cross(da - db, d.grad_b);
-  return d;
 }
 
 }  // namespace polyfloe::contact

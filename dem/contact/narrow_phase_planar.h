@@ -53,8 +53,13 @@ struct PlanarContact {
   double load_moment = 0.0;  // the torque on B about `point` [m^3]
   double extent = 0.0;       // the overlap's extent along the load [m] (its thickness across the contact)
   double breadth = 0.0;      // its extent across the load [m] (the contact's length)
+  // OverlapTerms::basic: d(depth)/d(approach), B moved against the normal, 1 - S/L^2 dL/d(approach): 1 for a
+  // face on a face (the chord keeps its length), 1/2 for a corner in a face (S/L grows at half the corner's
+  // penetration); 1 in the containment fallback [-]
+  double slope = 1.0;
+  double unused = 0.0;  // (an even count of doubles: no padding after the 16-byte aligned Vec2s)
 };
-static_assert(sizeof(PlanarContact) == 20 * sizeof(double), "PlanarContact has no padding");
+static_assert(sizeof(PlanarContact) == 22 * sizeof(double), "PlanarContact has no padding");
 
 // What planar_overlap measures beyond the area, centroid, chord and depth.
 enum class OverlapTerms {

@@ -95,6 +95,7 @@ struct PairDirection {
     const contact::DepthGradient dg = contact::depth_gradient(g, sa.pos, sb.pos);
     d.dir_b = -dg.grad_b;
     d.arm_b = -dg.grad_wb;
+    d.arm_a = -dg.grad_wa;
     d.rate = dg.grad_a.dot(sa.vel) + dg.grad_wa * sa.omega + dg.grad_b.dot(sb.vel) + dg.grad_wb * sb.omega;
     // Coulomb caps friction by the normal component of the contact force; in the gradient model that is
     // F_n (-grad_b . n): 1 for faces, 1/2 for a corner on a face (a triangle's depth grows at half the corner's
@@ -115,12 +116,43 @@ struct PairDirection {
   } else {
     d.dir_b = g.normal;
     d.arm_b = geometry::cross(rb, g.normal);
+    d.arm_a = geometry::cross(ra, g.normal);
     d.rate = -v_rel.dot(g.normal);
   }
   d.slip = v_rel.dot(geometry::perp_left(g.normal));
   d.rb = rb;
   d.a_from_b = rb - ra;
   return d;
+}
+
+// The centroid and gradient models' normal and friction forces (the Hertz law in the depth) for the touching pair
+// of slots (a, b), with the last step's history `last` (`continuing`: the pair touched then).
+[[gnu::always_inline]] inline contact::ContactForce hertz_force(const PairContext& c, const contact::PlanarContact& g,
+                                                                const PairDirection& d,
+                                                                const contact::PairCoefficients& k, int a, int b,
+                                                                const contact::PlanarHistory& last, bool continuing) {
+  // The Hertz law in the coordinate whose rate d.rate is (contact::ContactLaw::evaluate_hertz): for the centroid
+  // model the approach along the normal, which the depth follows at g.slope; for the gradient model the depth
+  // itself, the pair's mass along it m* / |grad_b|^2. Its damping at the end of the step, as the foundation
+  // model's (contact::DampingStep), through the inverse mass along the force with the arms.
+  const int body_a = c.in.statics[a].body, body_b = c.in.statics[b].body;
+  const double ia = c.in.inv_mass[body_a], ib = c.in.inv_mass[body_b];
+  const double ja = c.in.inv_inertia[body_a], jb = c.in.inv_inertia[body_b];
+  contact::DampingStep step;
+  step.last_normal = last.normal_force;
+  double slope = g.slope, mass_ratio = 1.0;
+  if (c.gradient) {
+    const double s2 = d.dir_b.squaredNorm();  // |grad_b|^2 (1 for faces, 1/4 for a corner in a face)
+    slope = 1.0;
+    mass_ratio = s2 > 0.0 ? 1.0 / s2 : 1.0;
+    step.inverse_mass = (ia + ib) * s2 + ja * d.arm_a * d.arm_a + jb * d.arm_b * d.arm_b;
+  } else {
+    step.inverse_mass = ia + ib + ja * d.arm_a * d.arm_a + jb * d.arm_b * d.arm_b;
+  }
+  // A contact's first step: it began (depth / slope) / rate before now (at most dt).
+  if (!continuing) step.since_entry = d.rate > 0.0 ? std::min(g.depth / slope / d.rate, c.in.dt) : c.in.dt;
+  step.entry_power = c.law.settings().damping == contact::DampingModel::paper ? 0.5 : 0.25;
+  return c.law.evaluate_hertz(k, g.depth, slope, mass_ratio, d.rate, d.slip, last.spring, c.in.dt, step);
 }
 
 // One candidate pair's evaluation into r (hit: it touches, outside a bond). Reads only, but for r and the pair's
@@ -175,7 +207,7 @@ struct PairDirection {
     r.v2 = d.rate * d.rate + 2.0 * r.energy / k.m_star;  // the impact speed of this energy
     r.q2 = x * x * x * x * x;
   } else {
-    r.cf = c.law.evaluate(k, g.depth, d.rate, d.slip, last.spring, c.in.dt);
+    r.cf = hertz_force(c, g, d, k, a, b, last, continuing);
     // t_c^5 = 3.2181^5 (m*/k_n)^2 / v: track the contact with the largest v^2 (k_n/m*)^4 (no pow in the loop),
     // v^2 = rate^2 + 2 W / m* the impact speed of this energy W = 2/5 k_n d^2.5.
     const double km = k.k_per_m;

@@ -50,6 +50,23 @@ std::string output_block(const std::string& resolved) {
   return out;
 }
 
+// The value of `key` in the top-level block `block` of a resolved scene, its comment and spaces cut off ("" where
+// it has none).
+std::string resolved_value(const std::string& resolved, const std::string& block, const std::string& key) {
+  auto trimmed = [](std::string v) {
+    v = v.substr(0, v.find('#'));
+    const auto first = v.find_first_not_of(" \t'\""), last = v.find_last_not_of(" \t'\"");
+    return first == std::string::npos ? std::string() : v.substr(first, last - first + 1);
+  };
+  std::istringstream in(resolved);
+  bool inside = false;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line[0] != ' ' && line[0] != '#') inside = trimmed(line) == block + ":";
+    if (inside && line.rfind("  " + key + ":", 0) == 0) return trimmed(line.substr(key.size() + 3));
+  }
+  return "";
+}
+
 // Reads what a restart copies from an interrupted run's results: the first `frames` rows of every series and every
 // other dataset whole. Throws io::IoError (naming the dataset) when a block cannot be read or a series is short.
 void readable_frames(const io::hdf5::Group& g, std::uint64_t frames) {
@@ -161,6 +178,19 @@ std::filesystem::path take_checkpoint(const scene::Scene& scene, W& world, const
     throw CheckpointError(where +
                           "the scene's output settings differ from those of the interrupted run; a restart "
                           "continues its output series, so they must be the same (output.checkpoint may change)");
+  // The contact law of level floes stays: the contacts' history (springs, last normal forces) is its own. (A
+  // checkpoint's scene text without the key: the model then had no choice, the centroid law.)
+  auto model = [](const std::string& resolved) {
+    const std::string m = resolved_value(resolved, "contact", "force_model");
+    return m.empty() ? std::string(contact::force_model_name(contact::ForceModel::centroid)) : m;
+  };
+  const std::string was = model(c.scene_resolved), now = model(scene::resolved_yaml(scene));
+  if (kPlanar<W> && was != now)
+    throw CheckpointError(where + "the interrupted run's contacts followed contact.force_model '" + was +
+                          "', the scene gives '" + now +
+                          "'; a restart keeps the contact law (the contacts' history is its own): set "
+                          "contact.force_model: " +
+                          was + ", or run the scene anew into another folder (-o)");
   try {  // the state first: what is wrong with it is wrong whatever folder the restart is given
     if constexpr (kPlanar<W>)
       world.restore(c.world);

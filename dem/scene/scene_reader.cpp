@@ -56,6 +56,16 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
                        ": a spatial scene takes its bodies from 'spatial.bodies' and has "
                        "no drift forcing: remove '" +
                        planar_only + "' (or remove 'spatial' for a planar scene)");
+    // How level floes touch (the overlap polygon's narrow phase and force model) does not apply to polyhedra,
+    // whose contacts have one law (docs/model.md): a key naming it would be silently ignored.
+    const YAML::Node& tree = root;  // (const: looking up a key adds no node)
+    if (const YAML::Node contact = tree.IsMap() ? tree["contact"] : YAML::Node(); contact && contact.IsMap())
+      for (const char* key : {"force_model", "narrow_phase"})
+        if (const YAML::Node value = contact[key]; value)
+          ctx.fail({value, YAML::Node(), std::string("contact.") + key},
+                   "applies to level floes only; a spatial scene's polyhedra have one contact law (the Hertz law "
+                   "at each contact point of their overlap, docs/model.md): remove it (or remove 'spatial' for a "
+                   "planar scene)");
     return;
   }
   check_forcing(ctx, top.self(), s);

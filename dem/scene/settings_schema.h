@@ -112,21 +112,25 @@ void ice_keys(V& v, Scene& s) {
   v.number("poisson_ratio", s.world.contact.poisson_ratio, Range{0.0, 0.5, false, true, "-"}, "");
 }
 
+// `level_floes`: the planar world's keys (narrow_phase, force_model); a spatial scene has neither (the reader refuses
+// them there; a spatial scene's resolved text leaves them out).
 template <class V>
-void contact_keys(V& v, dynamics::WorldSettings& w) {
+void contact_keys(V& v, dynamics::WorldSettings& w, bool level_floes) {
   v.number("restitution", w.contact.restitution, Range{0.0, 1.0, true, false, "-"}, "");
   v.number("friction", w.contact.friction, closed(0.0, 10.0, "-"), "Coulomb coefficient");
   v.choice("damping_model", w.contact.damping,
            {{"speed_independent", contact::DampingModel::speed_independent}, {"paper", contact::DampingModel::paper}},
            "");
-  v.choice("narrow_phase", w.narrow_phase,
-           {{"exact", dynamics::PlanarNarrowPhase::exact}, {"gjk_epa", dynamics::PlanarNarrowPhase::gjk_epa}},
-           "level floes: exact overlap polygon, or the paper's GJK-EPA (comparison)");
-  v.choice("force_model", w.contact.force_model,
-           {{"centroid", contact::ForceModel::centroid},
-            {"gradient", contact::ForceModel::gradient},
-            {"foundation", contact::ForceModel::foundation}},
-           "");
+  if (level_floes) {
+    v.choice("narrow_phase", w.narrow_phase,
+             {{"exact", dynamics::PlanarNarrowPhase::exact}, {"gjk_epa", dynamics::PlanarNarrowPhase::gjk_epa}},
+             "level floes: exact overlap polygon, or the paper's GJK-EPA (comparison)");
+    v.choice("force_model", w.contact.force_model,
+             {{"centroid", contact::ForceModel::centroid},
+              {"gradient", contact::ForceModel::gradient},
+              {"foundation", contact::ForceModel::foundation}},
+             "");
+  }
   v.zero_is_auto("broad_phase_cell", w.broad_phase_cell, positive("m"), "");
   v.zero_is_auto("broad_phase_skin", w.broad_phase_skin, positive("m"),
                  "speed only: the contacts are the same for any value");
@@ -313,7 +317,7 @@ void scene_keys(V& v, Scene& s) {
   v.block("run", [&](V& b) { run_keys(b, s.time); });
   v.block("output", [&](V& b) { output_keys(b, s.output); });
   v.block("ice", [&](V& b) { ice_keys(b, s); });
-  v.block("contact", [&](V& b) { contact_keys(b, s.world); });
+  v.block("contact", [&](V& b) { contact_keys(b, s.world, !s.spatial); });
   if (!s.spatial) {
     v.block("forcing", [&](V& b) { forcing_keys(b, s); });
     v.custom("floes", s.bodies, "", read_floes, write_floes);

@@ -387,6 +387,9 @@ TEST(Restart, BadCheckpointsAreRefusedBeforeAnyOutputIsTouched) {
   refused({"run", scene, "--set", "floes.0.thickness=2", "--restart", good.string()}, "was written for other bodies");
   // Output settings changed.
   refused({"run", scene, "--set", "output.interval=0.5", "--restart", good.string()}, "output settings differ");
+  // Another contact law: its history is not this one's (never a silent switch).
+  refused({"run", scene, "--set", "contact.force_model=foundation", "--restart", good.string()},
+          "the interrupted run's contacts followed contact.force_model 'centroid', the scene gives 'foundation'");
   // A folder without checkpoints.
   fs::create_directories(base / "empty");
   refused({"run", scene, "--restart", (base / "empty").string()}, "no checkpoint");

@@ -106,9 +106,11 @@ Floes pressed_pair() {
 TEST(ContactStage, PressedSlidingSquaresGetTheHertzForceAndTheSpringsFrictionAtTheOverlapsCentroid) {
   const Floes f = pressed_pair();
   Stage s;
+  // Elastic (e = 1): the damping, at the rate predicted for the end of the step, would resist the floes' parting.
+  s.law = contact::ContactLaw(contact::ContactLawSettings{.restitution = 1.0});
   const contact::PairCoefficients k =
       s.law.coefficients(f.statics[0].radius, f.statics[1].radius, f.statics[0].mass, f.statics[1].mass);
-  const double fn = k.k_n * kDepth * std::sqrt(kDepth);        // no approach: no damping
+  const double fn = k.k_n * kDepth * std::sqrt(kDepth);        // no damping
   const double ft = -k.k_s * std::sqrt(kDepth) * kSlip * kDt;  // the spring after one step of slip
   ASSERT_LT(std::abs(ft), k.mu * fn);                          // below the Coulomb cap
   const double arm = 0.5 * (kSide - kDepth);                   // the overlap's centroid from either centre [m]

@@ -108,7 +108,6 @@ TEST(SceneReader, CubePlateSceneParsesAndReadsBack) {
 
 TEST(SceneReader, SpatialKeysReadBack) {
   const Scene s = parse_scene(
-      "contact: {narrow_phase: gjk_epa}\n"
       "spatial:\n"
       "  gravity: [0, 0, -9.81]\n"
       "  buoyancy: true\n"
@@ -130,7 +129,6 @@ TEST(SceneReader, SpatialKeysReadBack) {
       "      motion: fixed\n",
       "spatial.yaml", {});
   ASSERT_TRUE(s.spatial.has_value());
-  EXPECT_EQ(s.world.narrow_phase, dynamics::PlanarNarrowPhase::gjk_epa);
   EXPECT_EQ(s.spatial->gravity, geometry::Vec3(0.0, 0.0, -9.81));
   EXPECT_TRUE(s.spatial->buoyancy);
   EXPECT_EQ(s.spatial->narrow_phase, dynamics::SpatialNarrowPhase::mpr);
