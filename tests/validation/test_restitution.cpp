@@ -134,6 +134,27 @@ INSTANTIATE_TEST_SUITE_P(ForceModels, RestitutionGrid,
                                            contact::ForceModel::foundation),
                          [](const auto& info) { return std::string(contact::force_model_name(info.param)); });
 
+// The paper's narrow phase (GJK-EPA in the plane) with the centroid force model on the same grid: its depth is the
+// minimum translation, which grows one for one with a corner's penetration (slope 1), and its damping meets the step
+// as the exact narrow phase's does. Measured at most 2.9e-4 face on face and corner on face.
+TEST(Restitution, GjkEpaNarrowPhaseMeetsTheGridToo) {
+  double worst_face = 0.0, worst_corner = 0.0;
+  for (double e : {0.1, 0.3, 0.5, 0.9})
+    for (double v : {0.01, 0.1, 1.0, 4.0})
+      for (int k = 0; k < 8; ++k)
+        for (const bool corner : {false, true}) {
+          const double got =
+              measured_restitution(e, v, contact::DampingModel::speed_independent, 40.0, -1.0, k / 8.0,
+                                   dynamics::PlanarNarrowPhase::gjk_epa, contact::ForceModel::centroid, corner);
+          double& worst = corner ? worst_corner : worst_face;
+          worst = std::max(worst, std::abs(got - e));
+        }
+  std::printf("gjk_epa, centroid: worst |measured - e|: face on face %.2e, corner on face %.2e\n", worst_face,
+              worst_corner);
+  EXPECT_LT(worst_face, 1e-3);
+  EXPECT_LT(worst_corner, 1e-3);
+}
+
 TEST(Restitution, PaperModelExactOnlyAtReferenceSpeed) {
   // Eq. 4 as printed (damping ~ d^0.5): exact at the reference speed, and restitution falls as speed rises.
   const double e = 0.5;
