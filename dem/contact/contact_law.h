@@ -166,15 +166,10 @@ class ContactLaw {
   PairCoefficients coefficients(double r_a, double r_b, double m_a, double m_b) const;
   // depth d [m], depth_rate d_dot [m/s] (> 0 while approaching), tangential slip velocity of B relative to A along
   // t [m/s], previous spring s [m], time step [s].
-  // Inline: the step's pair loop shares its square root of the depth.
+  // evaluate_hertz with slope and mass ratio 1 and no step terms (the spatial world's contact points).
   ContactForce evaluate(const PairCoefficients& c, double depth, double depth_rate, double slip_velocity, double spring,
                         double dt) const {
-    ContactForce f;
-    const double sqrt_d = std::sqrt(depth);
-    const double damp_factor = s_.damping == DampingModel::paper ? sqrt_d : std::sqrt(sqrt_d);
-    f.normal = std::max(0.0, c.k_n * depth * sqrt_d + c.damping * damp_factor * depth_rate);
-    friction(c.mu, c.k_s * sqrt_d, slip_velocity, spring, dt, f);  // k_t = k_s |d|^(kappa - 1)
-    return f;
+    return evaluate_hertz(c, depth, 1.0, 1.0, depth_rate, slip_velocity, spring, dt, DampingStep{});
   }
   // The same law for a contact given by its elastic force and stiffness rather than a Hertz depth (the foundation
   // force model): elastic normal force F_e [N], stiffness K = dF_e/d(approach) [N/m], approach rate [m/s] (> 0
@@ -209,10 +204,11 @@ class ContactLaw {
     ContactForce f;
     const double sqrt_d = std::sqrt(depth);
     const double scale = slope * mass_ratio;
-    const double damping = s_.damping == DampingModel::paper ? c.damping * sqrt_d * std::pow(scale, 0.4)
-                                                             : c.damping * std::sqrt(sqrt_d * scale);
+    const double damping = s_.damping == DampingModel::paper
+                               ? c.damping * sqrt_d * (scale == 1.0 ? 1.0 : std::pow(scale, 0.4))
+                               : c.damping * std::sqrt(sqrt_d * scale);
     f.normal = stepped_normal(c.k_n * depth * sqrt_d, damping, rate, dt, step);
-    friction(c.mu, c.k_s * sqrt_d, slip_velocity, spring, dt, f);
+    friction(c.mu, c.k_s * sqrt_d, slip_velocity, spring, dt, f);  // k_t = k_s |d|^(kappa - 1)
     return f;
   }
 

@@ -125,6 +125,23 @@ struct PairDirection {
   return d;
 }
 
+// How a pair's damping meets the step (contact::DampingStep): the velocities were predicted at the end of the step
+// with the last step's forces (World::evaluate_forces), and the pair's own change of normal force since moves its
+// approach rate by the final half kick, through w = the inverse of its effective mass along its direction (the
+// arms included; the translation's share weighted by `weight`, |grad_b|^2 for the gradient model). A contact's
+// first step: it began `extent` / rate before now (at most dt).
+[[gnu::always_inline]] inline contact::DampingStep damping_step(const PairContext& c, int a, int b,
+                                                                const PairDirection& d, double weight, double extent,
+                                                                const contact::PlanarHistory& last, bool continuing) {
+  const int body_a = c.in.statics[a].body, body_b = c.in.statics[b].body;
+  contact::DampingStep step;
+  step.inverse_mass = (c.in.inv_mass[body_a] + c.in.inv_mass[body_b]) * weight +
+                      c.in.inv_inertia[body_a] * d.arm_a * d.arm_a + c.in.inv_inertia[body_b] * d.arm_b * d.arm_b;
+  step.last_normal = last.normal_force;
+  if (!continuing) step.since_entry = d.rate > 0.0 ? std::min(extent / d.rate, c.in.dt) : c.in.dt;
+  return step;
+}
+
 // The centroid and gradient models' normal and friction forces (the Hertz law in the depth) for the touching pair
 // of slots (a, b), with the last step's history `last` (`continuing`: the pair touched then).
 [[gnu::always_inline]] inline contact::ContactForce hertz_force(const PairContext& c, const contact::PlanarContact& g,
@@ -133,24 +150,10 @@ struct PairDirection {
                                                                 const contact::PlanarHistory& last, bool continuing) {
   // The Hertz law in the coordinate whose rate d.rate is (contact::ContactLaw::evaluate_hertz): for the centroid
   // model the approach along the normal, which the depth follows at g.slope; for the gradient model the depth
-  // itself, the pair's mass along it m* / |grad_b|^2. Its damping at the end of the step, as the foundation
-  // model's (contact::DampingStep), through the inverse mass along the force with the arms.
-  const int body_a = c.in.statics[a].body, body_b = c.in.statics[b].body;
-  const double ia = c.in.inv_mass[body_a], ib = c.in.inv_mass[body_b];
-  const double ja = c.in.inv_inertia[body_a], jb = c.in.inv_inertia[body_b];
-  contact::DampingStep step;
-  step.last_normal = last.normal_force;
-  double slope = g.slope, mass_ratio = 1.0;
-  if (c.gradient) {
-    const double s2 = d.dir_b.squaredNorm();  // |grad_b|^2 (1 for faces, 1/4 for a corner in a face)
-    slope = 1.0;
-    mass_ratio = s2 > 0.0 ? 1.0 / s2 : 1.0;
-    step.inverse_mass = (ia + ib) * s2 + ja * d.arm_a * d.arm_a + jb * d.arm_b * d.arm_b;
-  } else {
-    step.inverse_mass = ia + ib + ja * d.arm_a * d.arm_a + jb * d.arm_b * d.arm_b;
-  }
-  // A contact's first step: it began (depth / slope) / rate before now (at most dt).
-  if (!continuing) step.since_entry = d.rate > 0.0 ? std::min(g.depth / slope / d.rate, c.in.dt) : c.in.dt;
+  // itself, the pair's mass along it m* / |grad_b|^2 (|grad_b| 1 for faces, 1/2 for a corner in a face).
+  const double s2 = c.gradient ? d.dir_b.squaredNorm() : 1.0;
+  const double slope = c.gradient ? 1.0 : g.slope, mass_ratio = s2 > 0.0 ? 1.0 / s2 : 1.0;
+  contact::DampingStep step = damping_step(c, a, b, d, s2, g.depth / slope, last, continuing);
   step.entry_power = c.law.settings().damping == contact::DampingModel::paper ? 0.5 : 0.25;
   return c.law.evaluate_hertz(k, g.depth, slope, mass_ratio, d.rate, d.slip, last.spring, c.in.dt, step);
 }
@@ -188,15 +191,7 @@ struct PairDirection {
                                                                              : contact::PlanarHistory{})
           : c.cache.previous(contact::PairKey{A.id, B.id}, c.hints[polyfloe_thread_index()].at, &continuing);
   if (c.foundation) {
-    // The damping at the end of the step (see contact::DampingStep): the velocities were predicted there with
-    // the last step's forces (World::evaluate_forces), and this pair's own change of normal force since moves
-    // its approach rate by the final half kick, through w = the inverse of its effective mass along its
-    // direction (with the arms). A contact's first step: it began tau = extent / rate before now (at most dt).
-    contact::DampingStep step;
-    step.inverse_mass = c.in.inv_mass[A.body] + c.in.inv_mass[B.body] + c.in.inv_inertia[A.body] * d.arm_a * d.arm_a +
-                        c.in.inv_inertia[B.body] * d.arm_b * d.arm_b;
-    step.last_normal = last.normal_force;
-    if (!continuing) step.since_entry = d.rate > 0.0 ? std::min(g.extent / d.rate, c.in.dt) : c.in.dt;
+    const contact::DampingStep step = damping_step(c, a, b, d, 1.0, g.extent, last, continuing);
     r.cf = c.law.evaluate_stiffness(k, d.elastic, d.stiffness, d.exponent, d.rate, d.slip, last.spring, c.in.dt, step);
     // The contact's duration from its stiffness now: t = g pi sqrt(m* / K), g = 1 for a linear spring (exact),
     // 1.283 for Hertz (its t_c at its deepest), between them linear in n. As q2 below:

@@ -209,6 +209,13 @@ class Group : public Object {
       : Object(std::move(handle), std::move(name), std::move(file)) {}
 };
 
+// Sets the "units" attribute of a dataset and, where given, its "description".
+inline void units(Dataset& d, const char* u, const char* description = nullptr) {
+  d.set_attribute("units", u);
+  if (description) d.set_attribute("description", description);
+}
+inline void units(Dataset&& d, const char* u, const char* description = nullptr) { units(d, u, description); }
+
 class File {
  public:
   enum class Mode {

@@ -19,19 +19,11 @@ namespace polyfloe::io {
 using hdf5::Dataset;
 using hdf5::Dims;
 using hdf5::DType;
+using hdf5::units;
 
 namespace {
 
 constexpr std::uint64_t kSeriesChunk = 256;  // rows per chunk of the 1-D and small series
-
-void units(Dataset&& d, const char* u, const char* description = nullptr) {
-  d.set_attribute("units", u);
-  if (description) d.set_attribute("description", description);
-}
-void units(Dataset& d, const char* u, const char* description = nullptr) {
-  d.set_attribute("units", u);
-  if (description) d.set_attribute("description", description);
-}
 
 // Creates the file's folder if needed; returns the path unchanged.
 const std::filesystem::path& with_parent_folder(const std::filesystem::path& path) {

@@ -16,15 +16,9 @@ namespace polyfloe::io {
 
 using hdf5::Dataset;
 using hdf5::Dims;
+using hdf5::units;
 
 namespace {
-
-// Its units and, where given, what it is, as attributes; returns it.
-Dataset units(Dataset d, const char* u, const char* description = nullptr) {
-  d.set_attribute("units", u);
-  if (description) d.set_attribute("description", description);
-  return d;
-}
 
 constexpr const char* kViewFolder = "xdmf";
 
