@@ -20,6 +20,7 @@
 
 #include <span>
 
+#include "contact/narrow_phase_planar.h"
 #include "geometry/vec2.h"
 
 namespace polyfloe::contact::detail {
@@ -36,8 +37,11 @@ struct FoundationTerms {
 
 // `p[0..n)`: the overlap polygon relative to `origin`, counter-clockwise; `edge[k]` says which edge the polygon's
 // edge p[k] -> p[k+1] lies on: A's edge edge[k] (a[i] -> a[i+1]) when < na, else B's edge edge[k] - na
-// (b[j-1] -> b[j]). `g`: the point moments are taken about, relative to `origin`.
-FoundationTerms foundation_terms(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const Vec2* p,
-                                 const int* edge, int n, const Vec2& g);
+// (b[j-1] -> b[j]). `g`: P's centroid relative to `origin` (moments are taken about it), `area` its area [m^2].
+// `lines_a`, `lines_b`: the
+// polygons' edge lines (EdgeLines), or null to compute them here.
+FoundationTerms foundation_terms(std::span<const Vec2> a, std::span<const Vec2> b, const EdgeLines* lines_a,
+                                 const EdgeLines* lines_b, const Vec2& origin, const Vec2* p, const int* edge, int n,
+                                 const Vec2& g, double area);
 
 }  // namespace polyfloe::contact::detail

@@ -174,7 +174,7 @@ OverlapTopology read_topology(const ClipPolygon& poly, int na, int nb) {
 
 // Area, centroid, chord, depth and (with_gradient) the gradient terms of the overlap polygon `poly`.
 bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const ClipPolygon& poly,
-             PlanarContact& out, OverlapTerms terms);
+             PlanarContact& out, OverlapTerms terms, const EdgeLines* lines_a, const EdgeLines* lines_b);
 
 // A clipped by B's edge lines into `buf` (one of the two buffers); false when they do not overlap.
 // `apart`: set to the edge of B whose line the whole of A lies outside, where the clipping ends there before any cut;
@@ -206,7 +206,7 @@ void find_apart_edge(std::span<const Vec2> a, std::span<const Vec2> b, const Vec
 }  // namespace
 
 bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out, OverlapTerms terms,
-                    OverlapTopology* topology) {
+                    OverlapTopology* topology, const EdgeLines* lines_a, const EdgeLines* lines_b) {
   // Work relative to A's first vertex: keeps precision for floes far from the origin.
   const Vec2 origin = a[0];
   ClipPolygon buf[2];
@@ -237,7 +237,7 @@ bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarCont
     }
     if (!poly) return false;
   }
-  const bool hit = measure(a, b, origin, *poly, out, terms);
+  const bool hit = measure(a, b, origin, *poly, out, terms, lines_a, lines_b);
   if (!hit && topology) *topology = {};
   return hit;
 }
@@ -364,7 +364,7 @@ const ClipPolygon* clip(std::span<const Vec2> a, std::span<const Vec2> b, const 
 }
 
 bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origin, const ClipPolygon& poly,
-             PlanarContact& out, OverlapTerms terms) {
+             PlanarContact& out, OverlapTerms terms, const EdgeLines* lines_a, const EdgeLines* lines_b) {
   const int na = static_cast<int>(a.size());
   const int nb = static_cast<int>(b.size());
   // A's edge i runs from a[i] to a[i+1]; B's edge j from b[j-1] to b[j] (the order the clipping visits them).
@@ -409,7 +409,8 @@ bool measure(std::span<const Vec2> a, std::span<const Vec2> b, const Vec2& origi
   out.slope = 1.0;
   out.load = Vec2{0.0, 0.0};
   auto foundation = [&] {
-    const detail::FoundationTerms f = detail::foundation_terms(a, b, origin, cur->p, cur->edge, n, g);
+    const detail::FoundationTerms f =
+        detail::foundation_terms(a, b, lines_a, lines_b, origin, cur->p, cur->edge, n, g, out.area);
     out.energy = f.energy;
     out.load = f.force;
     out.load_moment = f.moment;

@@ -101,6 +101,20 @@ struct OverlapTopology {
 };
 static_assert(kMaxPolygonVertices <= 127, "OverlapTopology holds edge indices in int8");
 
+// A convex polygon's edges as lines, for OverlapTerms::foundation: edge i runs from vertex i to vertex i + 1 (the
+// last to vertex 0), (nx[i], ny[i]) is its unit inward normal m_i and offset[i] = m_i·(vertex i - ref), so that
+// m_i·(x - ref) - offset[i] is the distance of x inside the edge's line [m]. A World keeps them per body beside its
+// world-frame vertices (ref its first vertex), so that each pair does not compute them again; stored as separate
+// arrays, so that a pair tests all of a polygon's edges at once (vectorised).
+struct EdgeLines {
+  const double* nx = nullptr;      // [-]
+  const double* ny = nullptr;      // [-]
+  const double* offset = nullptr;  // [m]
+  Vec2 ref{0.0, 0.0};              // [m]
+};
+// The lines of the polygon `v` about ref = v[0] into nx, ny, offset [0..n).
+void edge_lines(std::span<const Vec2> v, double* nx, double* ny, double* offset);
+
 // `a`, `b`: world-frame vertices, counter-clockwise, strictly convex, at most kMaxPolygonVertices each.
 // Returns false when the interiors do not overlap; touching (zero overlap area) counts as no contact.
 // `with_gradient`: also fill moment, ga, gb, ha, hb (30-50 ns more per overlapping pair; only the gradient force
@@ -118,8 +132,10 @@ static_assert(kMaxPolygonVertices <= 127, "OverlapTopology holds edge indices in
 // wholly outside that edge's line, by a margin, and returns false at once (the clipping would reject it too). On
 // return: the topology of this overlap, or unknown
 // (no contact, with the separating edge where one was seen, or another shape).
+// `lines_a`, `lines_b` (optional, OverlapTerms::foundation only): the polygons' edge lines, else computed here.
 bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out, OverlapTerms terms,
-                    OverlapTopology* topology = nullptr);
+                    OverlapTopology* topology = nullptr, const EdgeLines* lines_a = nullptr,
+                    const EdgeLines* lines_b = nullptr);
 inline bool planar_overlap(std::span<const Vec2> a, std::span<const Vec2> b, PlanarContact& out,
                            bool with_gradient = false, OverlapTopology* topology = nullptr) {
   return planar_overlap(a, b, out, with_gradient ? OverlapTerms::depth_gradient : OverlapTerms::basic, topology);

@@ -67,7 +67,15 @@ struct PairDirection {
   } else {
     // The topology this listed pair's overlap had at its last contact (see planar_overlap), kept for the next.
     contact::OverlapTopology* topology = entry >= 0 ? &c.lists.topology(entry) : nullptr;
-    if (!contact::planar_overlap(verts_a, verts_b, g, c.terms, topology)) return false;
+    const bool lines = c.foundation && !c.in.edge_nx.empty();
+    auto lines_of = [&](const SlotStatic& s, const Vec2& ref) {
+      return lines ? contact::EdgeLines{&c.in.edge_nx[s.vert_begin], &c.in.edge_ny[s.vert_begin],
+                                        &c.in.edge_offset[s.vert_begin], ref}
+                   : contact::EdgeLines{};
+    };
+    const contact::EdgeLines la = lines_of(A, verts_a[0]), lb = lines_of(B, verts_b[0]);
+    if (!contact::planar_overlap(verts_a, verts_b, g, c.terms, topology, lines ? &la : nullptr, lines ? &lb : nullptr))
+      return false;
     r.reused = topology && topology->reused;
   }
   // No force of the foundation model (one body centred inside the other, by symmetry): no contact.

@@ -54,7 +54,10 @@ struct PairForce {
 struct PlanarContactInput {
   std::span<const SlotStatic> statics;
   std::span<const SlotState> states;
-  std::span<const Vec2> world_xy;                 // counter-clockwise, from statics[k].vert_begin
+  std::span<const Vec2> world_xy;  // counter-clockwise, from statics[k].vert_begin
+  // The foundation force model's edge lines of those polygons (contact::EdgeLines about each one's first vertex),
+  // beside world_xy; empty: computed per pair.
+  std::span<const double> edge_nx{}, edge_ny{}, edge_offset{};
   std::span<const double> inv_mass, inv_inertia;  // [1/kg], [1/(kg m^2)], 0 unless dynamic
   const bonds::BondSet* bonds = nullptr;          // pairs joined by an intact face skip the contact law
   PlanarNarrowPhase narrow_phase = PlanarNarrowPhase::exact;

@@ -133,6 +133,9 @@ void World::update_shape(int i) {
     box.lo = box.lo.cwiseMin(out[k]);
     box.hi = box.hi.cwiseMax(out[k]);
   }
+  if (!edge_nx_.empty())
+    contact::edge_lines({out, static_cast<std::size_t>(count)}, edge_nx_.data() + vert_begin_[i],
+                        edge_ny_.data() + vert_begin_[i], edge_offset_.data() + vert_begin_[i]);
   boxes_[static_cast<std::size_t>(order_.slot_of(i))] = box;
 }
 

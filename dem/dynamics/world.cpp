@@ -38,6 +38,11 @@ int World::add_body(const BodyDesc& d) {
   motion_ready_ = false;
   vert_begin_.push_back(bodies_.vert_off[i]);
   world_xy_.resize(static_cast<std::size_t>(bodies_.vert_off.back()));
+  if (settings_.contact.force_model == contact::ForceModel::foundation) {
+    edge_nx_.resize(world_xy_.size());
+    edge_ny_.resize(world_xy_.size());
+    edge_offset_.resize(world_xy_.size());
+  }
   rotation_.emplace_back(1.0, 0.0);
   // A new body takes the last slot (its vertices go at the end of world_xy_); the next step sorts the slots.
   if (settings_.space_order_cell > 0.0)
@@ -390,6 +395,9 @@ void World::contact_forces(double dt) {
   const PlanarContactInput in{.statics = slot_static_,
                               .states = slot_state_,
                               .world_xy = world_xy_,
+                              .edge_nx = edge_nx_,
+                              .edge_ny = edge_ny_,
+                              .edge_offset = edge_offset_,
                               .inv_mass = bodies_.inv_mass,
                               .inv_inertia = bodies_.inv_inertia,
                               .bonds = bonds_ ? &*bonds_ : nullptr,

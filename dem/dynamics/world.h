@@ -319,6 +319,9 @@ class World {
   // world-frame shapes, refreshed after each move
   std::vector<int> vert_begin_;  // where body i's world-frame vertices start in world_xy_ (slot order, below)
   std::vector<Vec2> world_xy_;
+  // The foundation force model's edge lines of each body's world-frame polygon (contact::EdgeLines about its first
+  // vertex), beside world_xy_; empty under the other force models.
+  std::vector<double> edge_nx_, edge_ny_, edge_offset_;
   std::vector<Vec2> rotation_;  // (cos yaw, sin yaw) of the world-frame shape
 
   // The contact stage works on "slots": the bodies sorted by position (dynamics/slots.h), so that bodies close in

@@ -167,17 +167,44 @@ std::vector<std::span<const Vec2>> spans_of(const PairSet& s) {
   return polys;
 }
 
-// The timed loop: planar_overlap on pair after pair (with each pair's kept topology, when given).
+// Each polygon's edge lines, as a World keeps them per body (computed once per body and step, outside the pairs'
+// timing).
+struct PolygonLines {
+  std::vector<double> nx, ny, offset;
+  std::vector<contact::EdgeLines> lines;
+};
+PolygonLines lines_of(const std::vector<std::span<const Vec2>>& polys) {
+  PolygonLines l;
+  std::size_t total = 0;
+  for (const auto& p : polys) total += p.size();
+  l.nx.resize(total);
+  l.ny.resize(total);
+  l.offset.resize(total);
+  std::size_t at = 0;
+  for (const auto& p : polys) {
+    contact::edge_lines(p, l.nx.data() + at, l.ny.data() + at, l.offset.data() + at);
+    l.lines.push_back({l.nx.data() + at, l.ny.data() + at, l.offset.data() + at, p[0]});
+    at += p.size();
+  }
+  return l;
+}
+
+// The timed loop: planar_overlap on pair after pair (with each pair's kept topology, when given; with the
+// polygons' edge lines for the foundation terms).
 void time_pairs(benchmark::State& state, const std::vector<std::span<const Vec2>>& polys,
                 const std::vector<contact::OverlapTopology>* kept,
                 contact::OverlapTerms terms = contact::OverlapTerms::basic) {
+  const PolygonLines lines = lines_of(polys);
+  const bool with_lines = terms == contact::OverlapTerms::foundation;
   contact::PlanarContact c;
   std::uint32_t k = 0;
   std::int64_t hits = 0;
   const double cpu0 = thread_cpu_seconds();
   for (auto _ : state) {
     contact::OverlapTopology t = kept ? (*kept)[k] : contact::OverlapTopology{};
-    const bool hit = contact::planar_overlap(polys[2 * k], polys[2 * k + 1], c, terms, kept ? &t : nullptr);
+    const bool hit = contact::planar_overlap(polys[2 * k], polys[2 * k + 1], c, terms, kept ? &t : nullptr,
+                                             with_lines ? &lines.lines[2 * k] : nullptr,
+                                             with_lines ? &lines.lines[2 * k + 1] : nullptr);
     benchmark::DoNotOptimize(hit);
     benchmark::DoNotOptimize(c);
     benchmark::DoNotOptimize(t);
