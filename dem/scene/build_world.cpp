@@ -169,11 +169,15 @@ double time_step(const Scene& scene, const dynamics::World& world) {
   if (scene.time.dt) {
     dt = *scene.time.dt;
   } else {
-    const double duration = world.shortest_contact_duration(reference_speed(scene));  // [s]
+    // The Hertz contacts at the reference speed and (foundation model) the flat faces, each by its own steps.
+    const double hertz = world.shortest_hertz_contact_duration(reference_speed(scene));  // [s]
+    const double flat = world.shortest_flat_contact_duration();                          // [s], infinite: none
+    const double duration = std::min(hertz, flat);
     if (!(duration > 0.0) || !std::isfinite(duration))
       throw SceneError(scene.source_path + ": cannot choose an automatic time step (shortest contact duration " +
                        std::to_string(duration) + " s); set run.dt");
-    dt = std::min(duration / scene.time.steps_per_contact, bond_time_step(world));
+    const double flat_steps = scene.time.steps_per_flat_contact.value_or(scene.time.steps_per_contact);
+    dt = std::min({hertz / scene.time.steps_per_contact, flat / flat_steps, bond_time_step(world)});
   }
   check_run_length(scene, dt);
   return dt;

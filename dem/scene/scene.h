@@ -31,6 +31,10 @@ struct TimeSettings {
   double duration = 300.0;          // simulated time [s], > 0
   std::optional<double> dt;         // fixed time step [s]; empty = automatic
   double steps_per_contact = 40.0;  // auto dt = shortest contact duration / this [-], >= dynamics::kMinStepsPerContact
+  // The foundation force model's flat faces (a linear spring, whose contact lasts as long at any speed): the automatic
+  // dt is also at most the shortest flat contact's duration / this [-], >= dynamics::kMinStepsPerContact; empty =
+  // steps_per_contact. Only with contact.force_model: foundation (the scene reader refuses it otherwise).
+  std::optional<double> steps_per_flat_contact;
   std::optional<double> reference_speed;  // impact speed for the automatic dt and the paper damping [m/s];
                                           // empty = max(1 m/s, steady free-drift speed)
 };

@@ -36,6 +36,20 @@ namespace {
 
 using namespace detail;
 
+// run.steps_per_flat_contact sets the foundation force model's step for flat faces: a value is refused where it
+// would be ignored (`why`: the scene's other contact law).
+void check_flat_steps(const Context& ctx, const YAML::Node& root, const std::string& why) {
+  const YAML::Node& tree = root;  // (const: looking up a key adds no node)
+  const YAML::Node run = tree.IsMap() ? tree["run"] : YAML::Node();
+  if (!run || !run.IsMap()) return;
+  const YAML::Node& run_tree = run;
+  if (const YAML::Node value = run_tree["steps_per_flat_contact"];
+      value && !(value.IsScalar() && value.Scalar() == "auto"))  // (a resolved scene's text says auto)
+    ctx.fail({value, YAML::Node(), "run.steps_per_flat_contact"},
+             "applies to level floes under contact.force_model: foundation only (" + why +
+                 "): remove it, or set contact.force_model: foundation");
+}
+
 void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
   MapReader top(ctx, {root, YAML::Node(), ""});
   scene_keys(top, s);
@@ -66,9 +80,15 @@ void read_scene_tree(const Context& ctx, const YAML::Node& root, Scene& s) {
                    "applies to level floes only; a spatial scene's polyhedra have one contact law (the Hertz law "
                    "at each contact point of their overlap, docs/model.md): remove it (or remove 'spatial' for a "
                    "planar scene)");
+    check_flat_steps(ctx, root, "a spatial scene's polyhedra have one contact law (the Hertz law)");
     return;
   }
   check_forcing(ctx, top.self(), s);
+  if (s.world.contact.force_model != contact::ForceModel::foundation)
+    check_flat_steps(ctx, root,
+                     std::string("this scene's contact.force_model is ") +
+                         contact::force_model_name(s.world.contact.force_model) +
+                         ", whose automatic step does not resolve flat faces apart");
 
   const bool dynamic_body = std::any_of(s.bodies.begin(), s.bodies.end(),
                                         [](const BodySpec& b) { return b.motion == dynamics::Motion::dynamic; });

@@ -60,6 +60,8 @@ void run_keys(V& v, TimeSettings& t) {
   v.number("duration", t.duration, positive("s"), "simulated time");
   v.number_or_auto("dt", t.dt, positive("s"), "time step; auto = shortest contact duration / steps_per_contact");
   v.number("steps_per_contact", t.steps_per_contact, at_least(dynamics::kMinStepsPerContact, "-"), "");
+  v.number_or_auto("steps_per_flat_contact", t.steps_per_flat_contact, at_least(dynamics::kMinStepsPerContact, "-"),
+                   "foundation model: time steps per flat face's contact; auto = steps_per_contact");
   v.number_or_auto("reference_speed", t.reference_speed, positive("m/s"),
                    "impact speed; auto = max(1 m/s, free-drift speed)");
 }

@@ -2,6 +2,7 @@
 // name the bodies' sources.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -40,6 +41,22 @@ TEST(BuildWorld, TwoFloesSceneBuildsItsBodiesAndTheStepIsAFortiethContactUnlessD
   Scene fixed = s;
   fixed.time.dt = 1e-4;
   EXPECT_EQ(time_step(fixed, w), 1e-4);
+}
+
+// Under the foundation force model the automatic step resolves the Hertz contacts by run.steps_per_contact and the
+// flat faces by run.steps_per_flat_contact (auto: the same), each on its own; other models have no flat term.
+TEST(BuildWorld, TheFoundationModelsFlatFacesTakeTheirOwnStepsPerContact) {
+  Scene s = read_scene(kSceneDir + "two_floes.yaml", {"contact.force_model=foundation"});
+  const dynamics::World w = build_world(s);
+  const double hertz = w.shortest_hertz_contact_duration(2.0), flat = w.shortest_flat_contact_duration();
+  ASSERT_LT(flat, hertz);  // two 10 m squares: the flat face is the shorter contact
+  EXPECT_EQ(time_step(s, w), std::min(hertz, flat) / 40.0);
+  s.time.steps_per_flat_contact = 20.0;
+  EXPECT_EQ(time_step(s, w), std::min(hertz / 40.0, flat / 20.0));
+  s.time.steps_per_flat_contact = 400.0;
+  EXPECT_EQ(time_step(s, w), flat / 400.0);
+  const Scene centroid = read_scene(kSceneDir + "two_floes.yaml", {});
+  EXPECT_TRUE(std::isinf(build_world(centroid).shortest_flat_contact_duration()));
 }
 
 // Found by fuzzing (tests/fuzz/regressions/fuzz_scene_parser/check-step-count-overflows-long-long.yaml): a run of
