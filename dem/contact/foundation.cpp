@@ -60,68 +60,42 @@ bool clip(const Vec2* p, const int* e, int n, const Vec2& w, double c, Piece& ou
   return true;
 }
 
-// Adds sign * (∫ h ν ds, ∫ h cross(x - g, ν) ds) over Q's edges on the other body's boundary (labels >= na when
-// that body is B, in [0, na) when it is A) to the force and moment and, `with_energy`, ∫_Q h dA to the energy. h
-// is linear on Q.
-void integrate(const Vec2* qp, const int* qe, int qn, const Line& h, bool other_is_b, int na, const Vec2& g,
-               double sign, FoundationTerms& out, bool with_energy = true) {
-  if (qn < 3) return;
-  const Vec2 q0 = qp[0];
-  const double h0 = h.at(q0);
-  double energy6 = 0.0;   // 6 ∫_Q h dA, by the fan of triangles from q0
-  Vec2 force2{0.0, 0.0};  // 2 ∫ h ν ds
-  double moment6 = 0.0;   // 6 ∫ h cross(x - g, ν) ds
-  double hp = h0;
-  for (int k = 0; k < qn; ++k) {
-    const int k1 = (k + 1 == qn) ? 0 : k + 1;
-    const double hq = h.at(qp[k1]);
-    if (with_energy) energy6 += cross(qp[k] - q0, qp[k1] - q0) * (h0 + hp + hq);
-    const int e = qe[k];
-    if (e >= 0 && (e >= na) == other_is_b) {
-      const Vec2 nrm = perp_right(qp[k1] - qp[k]);  // outward normal x length
-      const Vec2 rp = qp[k] - g, rq = qp[k1] - g;
-      const Vec2 r6 = (2.0 * hp + hq) * rp + (hp + 2.0 * hq) * rq;  // 6 x the load's moment arm times its mean
-      force2 += (hp + hq) * nrm;
-      moment6 += cross(r6, nrm);
-    }
-    hp = hq;
-  }
-  out.force += (0.5 * sign) * force2;
-  out.moment += (sign / 6.0) * moment6;
-  if (energy6 > 0.0) out.energy += energy6 / 6.0;
-}
-
-// integrate() for h = min(h0, h1) over the polygon (p, e, n), in one pass without building the two parts: the
-// line h0 = h1 cuts it into the part where h0 is the least and the part where h1 is; each edge (or its piece on
-// either side) adds to its part, and each part's ∫ h dA is taken by the fan of triangles from a point O on the
-// cut, so that the cut itself (a side of both parts, collinear with O) adds nothing. The cut's edges carry no load.
+// For h = min(h0, h1), linear on each side of the line h0 = h1 (h0 and h1 may be one line: h linear on all of
+// it): adds sign * (∫ h ν ds, ∫ h cross(x - g, ν) ds) over the edges of the polygon (p, e, n) that lie on the
+// other body's boundary (labels >= na when that body is B, in [0, na) when it is A) to the force and moment and,
+// `with_energy`, ∫ h dA to the energy. In one pass without building the two parts: each edge (or its piece on
+// either side of the cut) adds to its part, and each part's ∫ h dA is taken by the fan of triangles from a point O
+// on the cut, so that the cut itself (a side of both parts, collinear with O) adds nothing. The cut carries no load.
 void integrate_two(const Vec2* p, const int* e, int n, const Line& h0, const Line& h1, bool other_is_b, int na,
-                   const Vec2& g, double sign, FoundationTerms& out) {
+                   const Vec2& g, double sign, FoundationTerms& out, bool with_energy = true) {
   if (n < 3) return;
   double s[kMaxPiece];
-  const Vec2 w = h0.m - h1.m;
-  const double c = h0.c - h1.c;
-  for (int k = 0; k < n; ++k) s[k] = w.dot(p[k]) - c;
-  // O: where the boundary first crosses the cut (or any vertex, where it does not: then one part is all of it).
-  Vec2 o = p[0];
-  for (int k = 0; k < n; ++k) {
-    const int k1 = (k + 1 == n) ? 0 : k + 1;
-    if ((s[k] <= 0.0) != (s[k1] <= 0.0)) {
-      o = p[k] + s[k] / (s[k] - s[k1]) * (p[k1] - p[k]);
-      break;
+  Vec2 o = p[0];  // O: where the boundary first crosses the cut (or any vertex, where it does not)
+  if (&h0 == &h1) {
+    std::fill(s, s + n, 0.0);  // one line: no cut
+  } else {
+    const Vec2 w = h0.m - h1.m;
+    const double c = h0.c - h1.c;
+    for (int k = 0; k < n; ++k) s[k] = w.dot(p[k]) - c;
+    for (int k = 0; k < n; ++k) {
+      const int k1 = (k + 1 == n) ? 0 : k + 1;
+      if ((s[k] <= 0.0) != (s[k1] <= 0.0)) {
+        o = p[k] + s[k] / (s[k] - s[k1]) * (p[k1] - p[k]);
+        break;
+      }
     }
   }
   const double o0 = h0.at(o), o1 = h1.at(o);
-  double energy6 = 0.0;
-  Vec2 force2{0.0, 0.0};
-  double moment6 = 0.0;
+  double energy6 = 0.0;   // 6 ∫ h dA
+  Vec2 force2{0.0, 0.0};  // 2 ∫ h ν ds
+  double moment6 = 0.0;   // 6 ∫ h cross(x - g, ν) ds
   // The segment a -> b of an edge with label `label`, in the part of h (its value at O: ho).
   auto segment = [&](const Vec2& a, const Vec2& b, int label, const Line& h, double ho) {
     const double ha = h.at(a), hb = h.at(b);
-    energy6 += cross(a - o, b - o) * (ho + ha + hb);
+    if (with_energy) energy6 += cross(a - o, b - o) * (ho + ha + hb);  // 6 ∫ h dA
     if (label >= 0 && (label >= na) == other_is_b) {
-      const Vec2 nrm = perp_right(b - a);  // outward normal x length
-      const Vec2 r6 = (2.0 * ha + hb) * (a - g) + (ha + 2.0 * hb) * (b - g);
+      const Vec2 nrm = perp_right(b - a);                                     // outward normal x length
+      const Vec2 r6 = (2.0 * ha + hb) * (a - g) + (ha + 2.0 * hb) * (b - g);  // 6 x arm x mean load
       force2 += (ha + hb) * nrm;
       moment6 += cross(r6, nrm);
     }
@@ -167,12 +141,12 @@ void split(const Vec2* p, const int* e, int n, const Vec2& w, double c, Piece& l
 // The most lines integrate_min() takes (it splits once per line beyond two, so its work doubles with each).
 constexpr int kMaxSplitLines = 5;
 
-// integrate() for h = the least of lines[0..k) over the piece (p, e, n), k <= kMaxSplitLines: the piece split where
+// integrate_two() for h = the least of lines[0..k) over the piece (p, e, n), k <= kMaxSplitLines: the piece split where
 // the first two lines are equal, each part going on with the lesser of them and the rest (two lines: in one pass).
 void integrate_min(const Vec2* p, const int* e, int n, const Line* lines, int k, bool other_is_b, int na, const Vec2& g,
                    double sign, FoundationTerms& out) {
   if (n < 3) return;
-  if (k == 1) return integrate(p, e, n, lines[0], other_is_b, na, g, sign, out);
+  if (k == 1) return integrate_two(p, e, n, lines[0], lines[0], other_is_b, na, g, sign, out);
   if (k == 2) return integrate_two(p, e, n, lines[0], lines[1], other_is_b, na, g, sign, out);
   Piece lo, hi;
   split(p, e, n, lines[0].m - lines[1].m, lines[0].c - lines[1].c, lo, hi);
@@ -267,7 +241,7 @@ void body_field(const EdgeLines& x, int nx, bool x_is_a, int na, const Vec2& ori
   const bool other = x_is_a;  // the other body is B when X is A
   if (nn == 1) {
     // All of P: ∫_P h dA = |P| h(centroid).
-    integrate(p, edge, n, lines[0], other, na, g, sign, out, false);
+    integrate_two(p, edge, n, lines[0], lines[0], other, na, g, sign, out, false);
     out.energy += area * lines[0].at(g);
     return;
   }
@@ -287,7 +261,7 @@ void body_field(const EdgeLines& x, int nx, bool x_is_a, int na, const Vec2& ori
       cp = buf[which].p, ce = buf[which].edge, cn = buf[which].n;
       which ^= 1;
     }
-    integrate(cp, ce, cn, li, other, na, g, sign, out);
+    integrate_two(cp, ce, cn, li, li, other, na, g, sign, out);
   }
 }
 
